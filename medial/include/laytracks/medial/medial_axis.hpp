@@ -1,0 +1,137 @@
+// The medial axis (MA) of one patch's polygon, as a plain graph, with the two-way mapping
+// boundary -> MA -> other boundary that the rail stage relies on (paper, sections 2-3).
+// No CGAL type leaves medial/.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "laytracks/brep/geometry.hpp"
+#include "laytracks/brep/polygon.hpp"
+
+namespace laytracks {
+
+using MaVertexId = Id<struct MaVertexTag>;
+using MaEdgeId = Id<struct MaEdgeTag>;
+
+/// A Voronoi site of the boundary: an open segment (vertex `index` to `index + 1` of the loop)
+/// or a single corner (vertex `index` of the loop). Only reflex corners are sites of MA edges.
+struct BoundarySite {
+  enum class Kind : std::uint8_t { Segment, Corner };
+  Kind kind = Kind::Segment;
+  std::uint32_t loop = 0;
+  std::uint32_t index = 0;
+
+  friend bool operator==(const BoundarySite& a, const BoundarySite& b) {
+    return a.kind == b.kind && a.loop == b.loop && a.index == b.index;
+  }
+  friend bool operator!=(const BoundarySite& a, const BoundarySite& b) { return !(a == b); }
+};
+
+/// A point of the boundary: on a segment site at parameter s in [0, 1] from its first vertex,
+/// or a corner site (s = 0).
+struct BoundaryPoint {
+  BoundarySite site;
+  double s = 0.0;
+  Vec2 position;
+};
+
+struct MaVertex {
+  Vec2 position;
+  double radius = 0.0;  ///< distance to the boundary; 0 at a convex corner
+  std::uint32_t degree = 0;
+  /// Set when the vertex sits on a convex corner of the polygon (an end point of the MA).
+  std::optional<BoundarySite> corner;
+};
+
+enum class MaEdgeKind : std::uint8_t {
+  Line,     ///< bisector of two segments, or of two corners
+  Parabola  ///< points equidistant from a reflex corner and a segment
+};
+
+/// An MA edge from vertex a to vertex b. Walking from a to b, `left` is the site on the left
+/// and `right` the site on the right; every point of the edge is equidistant from both.
+struct MaEdge {
+  MaVertexId a;
+  MaVertexId b;
+  BoundarySite left;
+  BoundarySite right;
+  MaEdgeKind kind = MaEdgeKind::Line;
+};
+
+enum class Side : std::uint8_t { Left, Right };
+
+/// A point of the MA on an edge, at parameter t in [0, 1] from its vertex a to its vertex b.
+/// For a line t is linear in arc length; for a parabola t is linear in the position of the
+/// touching point along its segment site.
+struct MaPoint {
+  MaEdgeId edge;
+  double t = 0.0;
+  Vec2 position;
+  double radius = 0.0;
+};
+
+struct MedialOptions {
+  /// Sagitta bound used to discretise the arcs of this polygon (part units). Structure smaller
+  /// than a few times this, left over after pruning smooth branches, is an artefact of the
+  /// discretisation and is pruned too. 0 disables that step.
+  double chord_tol = 0.0;
+};
+
+class MedialAxis {
+ public:
+  MedialAxis() = default;
+  MedialAxis(Polygon2 polygon, std::vector<MaVertex> vertices, std::vector<MaEdge> edges);
+
+  const Polygon2& polygon() const { return polygon_; }
+  const std::vector<MaVertex>& vertices() const { return vertices_; }
+  const std::vector<MaEdge>& edges() const { return edges_; }
+  const MaVertex& vertex(MaVertexId v) const { return vertices_[v.index()]; }
+  const MaEdge& edge(MaEdgeId e) const { return edges_[e.index()]; }
+  /// The edges incident to a vertex, in ascending id order.
+  const std::vector<MaEdgeId>& incident(MaVertexId v) const { return incident_[v.index()]; }
+  /// Branch points: vertices of degree >= 3.
+  std::vector<MaVertexId> branch_points() const;
+
+  /// Point and radius at parameter t of an edge (exact for lines, and for parabolas through
+  /// their focus-directrix form).
+  MaPoint point_on_edge(MaEdgeId e, double t) const;
+  /// Points along an edge for drawing, chords no longer than max_chord (at least the two ends).
+  std::vector<Vec2> sample_edge(MaEdgeId e, double max_chord) const;
+
+  /// Boundary -> MA: the centre of the maximal disk that touches the boundary at point p of a
+  /// segment site. Empty when p is a convex corner (its maximal disk has radius 0).
+  std::optional<MaPoint> project(const BoundaryPoint& p) const;
+  /// Boundary -> MA at a reflex corner, whose maximal disks form a fan: w in [0, 1] sweeps the
+  /// fan from the normal of the incoming segment (w = 0) to that of the outgoing one (w = 1).
+  std::optional<MaPoint> project_corner(std::uint32_t loop, std::uint32_t vertex, double w) const;
+  /// MA -> boundary: where the maximal disk at p touches the boundary on the given side.
+  BoundaryPoint touching_point(const MaPoint& p, Side side) const;
+  /// MA -> boundary at a vertex: every distinct touching point of its maximal disk
+  /// (>= 3 at a branch point).
+  std::vector<BoundaryPoint> touching_points(MaVertexId v) const;
+  /// The two-way mapping: boundary -> MA -> the other side.
+  std::optional<BoundaryPoint> opposite(const BoundaryPoint& p) const;
+
+  /// Self-check: radii equal the distance to the boundary (1e-9 relative), vertices inside the
+  /// polygon, degrees consistent, edges equidistant from their sites. Returns the problems
+  /// found, each a sentence; empty when valid.
+  std::vector<std::string> validate() const;
+
+ private:
+  Polygon2 polygon_;
+  std::vector<MaVertex> vertices_;
+  std::vector<MaEdge> edges_;
+  std::vector<std::vector<MaEdgeId>> incident_;
+  /// For each segment site (flattened loop-major), the MA edges having it as a site.
+  std::vector<std::vector<MaEdgeId>> segment_cells_;
+  std::vector<std::size_t> loop_offset_;
+};
+
+/// Computes the medial axis of a polygon with holes (outer CCW, holes CW, simple, as build_part
+/// guarantees). Throws InternalError if the result fails its own validation.
+MedialAxis compute_medial_axis(const Polygon2& polygon, const MedialOptions& options = {});
+
+}  // namespace laytracks
