@@ -1,1 +1,309 @@
-// placeholder: being written
+// From the segment Voronoi diagram to the medial axis of a polygon:
+//   voronoi -> refine vertices -> keep interior edges -> merge coincident vertices
+//   -> prune the branches of smooth corners -> compact -> self-check.
+// The rules are written down in docs/medial.md.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "laytracks/brep/error.hpp"
+#include "laytracks/medial/medial_axis.hpp"
+#include "sites.hpp"
+#include "voronoi.hpp"
+
+namespace laytracks {
+namespace {
+
+using medial_detail::is_endpoint_of;
+using medial_detail::VoronoiDiagram;
+
+/// Voronoi vertices joined by an interior edge shorter than this x the polygon's diagonal are
+/// one vertex: the diagram of cocircular sites (a square's centre) has zero-length edges.
+constexpr double kMergeRel = 1e-9;
+/// After pruning smooth branches, interior leaf edges shorter than this x the chord tolerance
+/// are discretisation artefacts (where a polygonised arc meets a straight edge) and go too.
+constexpr double kStubChordFactor = 4.0;
+
+struct UnionFind {
+  std::vector<std::uint32_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
+  std::uint32_t find(std::uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the lowest index represents
+  }
+};
+
+/// The working graph between extraction and the final MedialAxis.
+struct Graph {
+  std::vector<MaVertex> vertices;
+  std::vector<MaEdge> edges;
+  std::vector<bool> edge_alive;
+  std::vector<std::vector<std::uint32_t>> incident;  // alive or not
+  std::vector<std::uint32_t> original_degree;
+
+  std::uint32_t degree(std::uint32_t v) const {
+    std::uint32_t d = 0;
+    for (std::uint32_t e : incident[v]) d += edge_alive[e] ? 1u : 0u;
+    return d;
+  }
+  std::uint32_t only_edge(std::uint32_t v) const {
+    for (std::uint32_t e : incident[v]) {
+      if (edge_alive[e]) return e;
+    }
+    return 0;
+  }
+  std::uint32_t other(std::uint32_t e, std::uint32_t v) const {
+    const auto a = static_cast<std::uint32_t>(edges[e].a.index());
+    const auto b = static_cast<std::uint32_t>(edges[e].b.index());
+    return a == v ? b : a;
+  }
+};
+
+class Extractor {
+ public:
+  Extractor(const Polygon2& polygon, const MedialOptions& options)
+      : poly_(polygon), options_(options) {
+    Box2 box;
+    for (const auto& loop : poly_.loops) {
+      for (Vec2 p : loop) box.add(p);
+    }
+    size_ = box.diagonal();
+  }
+
+  MedialAxis run() {
+    VoronoiDiagram vd = medial_detail::segment_voronoi(poly_);
+    refine(vd);
+    const std::vector<std::uint32_t> kept = interior_edges(vd);
+    Graph g = merge(vd, kept);
+    prune_smooth_branches(g);
+    prune_stubs(g);
+    return compact(g);
+  }
+
+ private:
+  void refine(VoronoiDiagram& vd) const {
+    for (auto& v : vd.vertices) v.position = medial_detail::refine_vertex(poly_, v.sites, v.position);
+  }
+
+  bool is_reflex(const BoundarySite& corner, const VoronoiDiagram& vd) const {
+    return vd.turn[corner.loop][corner.index] < 0;
+  }
+
+  /// Indices of the Voronoi edges that belong to the medial axis.
+  std::vector<std::uint32_t> interior_edges(const VoronoiDiagram& vd) const {
+    std::vector<std::uint32_t> kept;
+    for (std::uint32_t i = 0; i < vd.edges.size(); ++i) {
+      const auto& e = vd.edges[i];
+      // The bisector of a segment and its own end point is the normal there: not medial.
+      if (is_endpoint_of(poly_, e.left, e.right) || is_endpoint_of(poly_, e.right, e.left)) continue;
+      const bool left_corner = e.left.kind == BoundarySite::Kind::Corner;
+      const bool right_corner = e.right.kind == BoundarySite::Kind::Corner;
+      bool inside;
+      if (left_corner || right_corner) {
+        // A corner's Voronoi cell is inside the polygon exactly when the corner is reflex.
+        inside = (!left_corner || is_reflex(e.left, vd)) && (!right_corner || is_reflex(e.right, vd));
+      } else {
+        // Two segments: the edge is inside when it lies on the inner side of its sites.
+        const Vec2 m = lerp(vd.vertices[e.a].position, vd.vertices[e.b].position, 0.5);
+        const Vec2 a = medial_detail::seg_start(poly_, e.left.loop, e.left.index);
+        inside = dot(m - a, medial_detail::inward_normal(poly_, e.left)) > 0.0;
+      }
+      if (inside) kept.push_back(i);
+    }
+    return kept;
+  }
+
+  Graph merge(const VoronoiDiagram& vd, const std::vector<std::uint32_t>& kept) const {
+    UnionFind uf(vd.vertices.size());
+    const double tol = kMergeRel * size_;
+    for (std::uint32_t i : kept) {
+      const auto& e = vd.edges[i];
+      if (distance(vd.vertices[e.a].position, vd.vertices[e.b].position) <= tol) uf.unite(e.a, e.b);
+    }
+    // New ids for the representatives used by a non-degenerate kept edge, in first-use order.
+    std::vector<std::uint32_t> new_id(vd.vertices.size(), UINT32_MAX);
+    Graph g;
+    auto vertex_of = [&](std::uint32_t v) {
+      const std::uint32_t r = uf.find(v);
+      if (new_id[r] == UINT32_MAX) {
+        new_id[r] = static_cast<std::uint32_t>(g.vertices.size());
+        g.vertices.emplace_back();
+      }
+      return new_id[r];
+    };
+    for (std::uint32_t i : kept) {
+      const auto& e = vd.edges[i];
+      if (uf.find(e.a) == uf.find(e.b)) continue;
+      const std::uint32_t a = vertex_of(e.a);
+      const std::uint32_t b = vertex_of(e.b);
+      MaEdge me;
+      me.a = MaVertexId(a);
+      me.b = MaVertexId(b);
+      me.left = e.left;
+      me.right = e.right;
+      const bool lc = e.left.kind == BoundarySite::Kind::Corner;
+      const bool rc = e.right.kind == BoundarySite::Kind::Corner;
+      me.kind = (lc != rc) ? MaEdgeKind::Parabola : MaEdgeKind::Line;
+      g.edges.push_back(me);
+    }
+    // Vertex data: the best-placed member of each group, the union of the sites.
+    std::vector<double> best(g.vertices.size(), INFINITY);
+    std::vector<std::vector<BoundarySite>> sites(g.vertices.size());
+    for (std::uint32_t v = 0; v < vd.vertices.size(); ++v) {
+      const std::uint32_t r = uf.find(v);
+      if (new_id[r] == UINT32_MAX) continue;
+      const std::uint32_t id = new_id[r];
+      const auto& vv = vd.vertices[v];
+      for (const auto& s : vv.sites) sites[id].push_back(s);
+      const double spread = medial_detail::distance_spread(poly_, vv.sites, vv.position);
+      if (spread < best[id]) {
+        best[id] = spread;
+        g.vertices[id].position = vv.position;
+      }
+    }
+    for (std::uint32_t id = 0; id < g.vertices.size(); ++id) {
+      auto& s = sites[id];
+      std::sort(s.begin(), s.end());
+      s.erase(std::unique(s.begin(), s.end()), s.end());
+      MaVertex& mv = g.vertices[id];
+      mv.sites = s;
+      double r = INFINITY;
+      for (const auto& site : s) r = std::min(r, medial_detail::site_distance(poly_, site, mv.position));
+      mv.radius = r;
+      for (const auto& site : s) {
+        if (site.kind == BoundarySite::Kind::Corner && vd.turn[site.loop][site.index] > 0 &&
+            distance(mv.position, poly_.loops[site.loop][site.index]) <= kMergeRel * size_) {
+          mv.corner = site;
+          mv.position = poly_.loops[site.loop][site.index];
+          mv.radius = 0.0;
+          mv.sites = {site};
+        }
+      }
+    }
+    g.edge_alive.assign(g.edges.size(), true);
+    g.incident.assign(g.vertices.size(), {});
+    for (std::uint32_t e = 0; e < g.edges.size(); ++e) {
+      g.incident[g.edges[e].a.index()].push_back(e);
+      g.incident[g.edges[e].b.index()].push_back(e);
+    }
+    g.original_degree.resize(g.vertices.size());
+    for (std::uint32_t v = 0; v < g.vertices.size(); ++v) g.original_degree[v] = g.degree(v);
+    return g;
+  }
+
+  bool is_smooth_corner(const MaVertex& v) const {
+    if (!v.corner) return false;
+    const auto& sm = poly_.smooth;
+    return v.corner->loop < sm.size() && v.corner->index < sm[v.corner->loop].size() &&
+           sm[v.corner->loop][v.corner->index];
+  }
+
+  /// Removes every chain that runs from a leaf at a smooth corner to the first vertex that was
+  /// a junction of the Voronoi-derived axis. A chain that reaches another leaf is kept (it is
+  /// all there is of that component).
+  void prune_smooth_branches(Graph& g) const {
+    for (std::uint32_t leaf = 0; leaf < g.vertices.size(); ++leaf) {
+      if (g.degree(leaf) != 1 || !is_smooth_corner(g.vertices[leaf])) continue;
+      std::vector<std::uint32_t> chain;  // edges
+      std::uint32_t v = leaf;
+      std::uint32_t prev_edge = UINT32_MAX;
+      bool reaches_junction = false;
+      while (true) {
+        std::uint32_t next_edge = UINT32_MAX;
+        for (std::uint32_t e : g.incident[v]) {
+          if (g.edge_alive[e] && e != prev_edge) {
+            next_edge = e;
+            break;
+          }
+        }
+        if (next_edge == UINT32_MAX) break;
+        chain.push_back(next_edge);
+        v = g.other(next_edge, v);
+        prev_edge = next_edge;
+        if (g.original_degree[v] != 2) {
+          reaches_junction = g.original_degree[v] >= 3;
+          break;
+        }
+      }
+      if (!reaches_junction) continue;
+      for (std::uint32_t e : chain) g.edge_alive[e] = false;
+    }
+  }
+
+  /// Removes short interior leaf edges left where smooth branches were pruned.
+  void prune_stubs(Graph& g) const {
+    if (options_.chord_tol <= 0.0) return;
+    const double max_len = kStubChordFactor * options_.chord_tol;
+    bool changed = true;
+    while (changed) {
+      changed = false;
+      for (std::uint32_t v = 0; v < g.vertices.size(); ++v) {
+        if (g.vertices[v].corner || g.degree(v) != 1) continue;
+        const std::uint32_t e = g.only_edge(v);
+        const std::uint32_t w = g.other(e, v);
+        if (g.degree(w) < 2) continue;  // the last edge of its component stays
+        if (distance(g.vertices[v].position, g.vertices[w].position) > max_len) continue;
+        g.edge_alive[e] = false;
+        changed = true;
+      }
+    }
+  }
+
+  MedialAxis compact(const Graph& g) const {
+    std::vector<std::uint32_t> new_id(g.vertices.size(), UINT32_MAX);
+    std::vector<MaVertex> vertices;
+    std::vector<MaEdge> edges;
+    auto keep_vertex = [&](std::uint32_t v) {
+      if (new_id[v] == UINT32_MAX) {
+        new_id[v] = static_cast<std::uint32_t>(vertices.size());
+        vertices.push_back(g.vertices[v]);
+      }
+      return new_id[v];
+    };
+    for (std::uint32_t e = 0; e < g.edges.size(); ++e) {
+      if (!g.edge_alive[e]) continue;
+      MaEdge me = g.edges[e];
+      me.a = MaVertexId(keep_vertex(static_cast<std::uint32_t>(me.a.index())));
+      me.b = MaVertexId(keep_vertex(static_cast<std::uint32_t>(me.b.index())));
+      edges.push_back(me);
+    }
+    if (vertices.empty() && !g.vertices.empty()) {
+      // Every edge was pruned (a polygonised disk): the axis is its deepest point.
+      std::uint32_t deepest = 0;
+      for (std::uint32_t v = 1; v < g.vertices.size(); ++v) {
+        if (g.vertices[v].radius > g.vertices[deepest].radius) deepest = v;
+      }
+      keep_vertex(deepest);
+    }
+    for (auto& v : vertices) v.degree = 0;
+    for (const auto& e : edges) {
+      ++vertices[e.a.index()].degree;
+      ++vertices[e.b.index()].degree;
+    }
+    return MedialAxis(poly_, std::move(vertices), std::move(edges));
+  }
+
+  const Polygon2& poly_;
+  MedialOptions options_;
+  double size_ = 0.0;
+};
+
+}  // namespace
+
+MedialAxis compute_medial_axis(const Polygon2& polygon, const MedialOptions& options) {
+  MedialAxis ma = Extractor(polygon, options).run();
+  const std::vector<std::string> problems = ma.validate();
+  if (!problems.empty()) {
+    std::string msg = "medial axis failed its self-check (" + std::to_string(problems.size()) +
+                      " problems); first: " + problems.front();
+    throw InternalError(msg);
+  }
+  return ma;
+}
+
+}  // namespace laytracks

@@ -28,6 +28,12 @@ struct BoundarySite {
     return a.kind == b.kind && a.loop == b.loop && a.index == b.index;
   }
   friend bool operator!=(const BoundarySite& a, const BoundarySite& b) { return !(a == b); }
+  /// Loop-major order: loop, then index, then segment before corner.
+  friend bool operator<(const BoundarySite& a, const BoundarySite& b) {
+    if (a.loop != b.loop) return a.loop < b.loop;
+    if (a.index != b.index) return a.index < b.index;
+    return a.kind < b.kind;
+  }
 };
 
 /// A point of the boundary: on a segment site at parameter s in [0, 1] from its first vertex,
@@ -44,6 +50,9 @@ struct MaVertex {
   std::uint32_t degree = 0;
   /// Set when the vertex sits on a convex corner of the polygon (an end point of the MA).
   std::optional<BoundarySite> corner;
+  /// Every site the vertex's maximal disk touches (sorted, unique). A branch point touches >= 3;
+  /// so can a vertex whose extra branches were pruned at smooth corners.
+  std::vector<BoundarySite> sites;
 };
 
 enum class MaEdgeKind : std::uint8_t {
@@ -102,7 +111,9 @@ class MedialAxis {
   std::vector<Vec2> sample_edge(MaEdgeId e, double max_chord) const;
 
   /// Boundary -> MA: the centre of the maximal disk that touches the boundary at point p of a
-  /// segment site. Empty when p is a convex corner (its maximal disk has radius 0).
+  /// segment site. At a convex corner this is the MA end point there (radius 0). Near a smooth
+  /// corner whose branch was pruned, the nearest boundary point still covered is used.
+  /// Empty only when p is not on the polygon's boundary.
   std::optional<MaPoint> project(const BoundaryPoint& p) const;
   /// Boundary -> MA at a reflex corner, whose maximal disks form a fan: w in [0, 1] sweeps the
   /// fan from the normal of the incoming segment (w = 0) to that of the outgoing one (w = 1).
@@ -125,9 +136,15 @@ class MedialAxis {
   std::vector<MaVertex> vertices_;
   std::vector<MaEdge> edges_;
   std::vector<std::vector<MaEdgeId>> incident_;
-  /// For each segment site (flattened loop-major), the MA edges having it as a site.
-  std::vector<std::vector<MaEdgeId>> segment_cells_;
+  /// For each site, the MA edges having it as a site (its Voronoi cell's medial boundary).
+  /// Indexed by cell_index(); corners and segments of loop l at 2 * (offset of l + i) + kind.
+  std::vector<std::vector<MaEdgeId>> cells_;
   std::vector<std::size_t> loop_offset_;
+  double size_ = 0.0;  ///< the polygon's bounding-box diagonal
+
+  std::size_t cell_index(const BoundarySite& s) const;
+  /// Parameter of x along edge e (unclamped), and the MA point there if x lies on the edge.
+  std::optional<MaPoint> locate(MaEdgeId e, Vec2 x) const;
 };
 
 /// Computes the medial axis of a polygon with holes (outer CCW, holes CW, simple, as build_part

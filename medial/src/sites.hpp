@@ -1,0 +1,39 @@
+// Private: the geometry of boundary sites (segments and corners of a Polygon2).
+#pragma once
+
+#include <array>
+
+#include "laytracks/brep/polygon.hpp"
+#include "laytracks/medial/medial_axis.hpp"
+
+namespace laytracks::medial_detail {
+
+/// End points of segment `index` of loop `loop`.
+inline Vec2 seg_start(const Polygon2& poly, std::uint32_t loop, std::uint32_t index) {
+  return poly.loops[loop][index];
+}
+inline Vec2 seg_end(const Polygon2& poly, std::uint32_t loop, std::uint32_t index) {
+  const auto& l = poly.loops[loop];
+  return l[(index + 1) % l.size()];
+}
+/// Unit normal of a segment pointing into the region (to its left).
+Vec2 inward_normal(const Polygon2& poly, const BoundarySite& segment);
+
+/// The nearest point of a site to x; for a segment, also its parameter s in [0, 1].
+Vec2 site_foot(const Polygon2& poly, const BoundarySite& site, Vec2 x, double* s = nullptr);
+/// Euclidean distance from x to a site (to the closed segment, or to the corner).
+double site_distance(const Polygon2& poly, const BoundarySite& site, Vec2 x);
+
+/// True when corner site `corner` is an end point of segment site `segment`.
+bool is_endpoint_of(const Polygon2& poly, const BoundarySite& corner, const BoundarySite& segment);
+
+/// Recomputes the centre of the disk touching three sites, starting from an approximation
+/// (CGAL's inexact construction can be far off where sites are nearly degenerate). Returns the
+/// better of the approximation and the refined point: the one whose distances to the three
+/// sites agree best.
+Vec2 refine_vertex(const Polygon2& poly, const std::array<BoundarySite, 3>& sites, Vec2 approx);
+
+/// Largest minus smallest distance from x to the sites: 0 for an exact Voronoi vertex.
+double distance_spread(const Polygon2& poly, const std::array<BoundarySite, 3>& sites, Vec2 x);
+
+}  // namespace laytracks::medial_detail
