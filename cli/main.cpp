@@ -1,1 +1,72 @@
-int main() { return 0; }
+// laytracks: all-quadrilateral meshing of shells made of planar patches (LayTracks, 2004).
+#include <cstring>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "args.hpp"
+#include "commands.hpp"
+#include "laytracks/brep/error.hpp"
+
+namespace {
+
+const char* const kHelp =
+    "usage: laytracks COMMAND [ARGS]\n"
+    "\n"
+    "commands:\n"
+    "  medial PART.json   the medial axis of every patch, as JSON and as a picture\n"
+    "  help [COMMAND]     this text, or a command's own\n"
+    "\n"
+    "The mesh, batch, check-loops and draw commands come with the rail and mesh stages; they are\n"
+    "not in this build yet.\n"
+    "\n"
+    "exit status: 0 done; 1 the part was refused (the message says what and where); 2 wrong\n"
+    "command line; 3 internal error (a stage failed its own check: please report it with the\n"
+    "part); 4 a file could not be read or written. On any error nothing is written.\n";
+
+int dispatch(const std::vector<std::string>& args) {
+  using namespace laytracks::cli;
+  if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
+    if (args.size() > 1 && args[1] == "medial") {
+      std::cout << kMedialHelp;
+    } else {
+      std::cout << kHelp;
+    }
+    return args.empty() ? kUsage : kOk;
+  }
+  if (args[0] == "--version") {
+    std::cout << "laytracks 0.1.0\n";
+    return kOk;
+  }
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  for (const auto& a : rest) {
+    if (a == "--help" || a == "-h") return dispatch({"help", args[0]});
+  }
+  if (args[0] == "medial") return run_medial(rest);
+  throw UsageError("unknown command \"" + args[0] + "\" (see laytracks --help)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace laytracks::cli;
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  try {
+    return dispatch(args);
+  } catch (const UsageError& e) {
+    std::cerr << "laytracks: " << e.what() << '\n';
+    return kUsage;
+  } catch (const laytracks::InputError& e) {
+    std::cerr << "laytracks: error: " << e.what() << '\n';
+    return kInputRefused;
+  } catch (const laytracks::InternalError& e) {
+    std::cerr << "laytracks: internal error: " << e.what() << '\n';
+    return kInternal;
+  } catch (const laytracks::Error& e) {
+    std::cerr << "laytracks: error: " << e.what() << '\n';
+    return kIo;
+  } catch (const std::exception& e) {
+    std::cerr << "laytracks: internal error: " << e.what() << '\n';
+    return kInternal;
+  }
+}

@@ -90,30 +90,11 @@ class Extractor {
     for (auto& v : vd.vertices) v.position = medial_detail::refine_vertex(poly_, v.sites, v.position);
   }
 
-  bool is_reflex(const BoundarySite& corner, const VoronoiDiagram& vd) const {
-    return vd.turn[corner.loop][corner.index] < 0;
-  }
-
   /// Indices of the Voronoi edges that belong to the medial axis.
-  std::vector<std::uint32_t> interior_edges(const VoronoiDiagram& vd) const {
+  static std::vector<std::uint32_t> interior_edges(const VoronoiDiagram& vd) {
     std::vector<std::uint32_t> kept;
     for (std::uint32_t i = 0; i < vd.edges.size(); ++i) {
-      const auto& e = vd.edges[i];
-      // The bisector of a segment and its own end point is the normal there: not medial.
-      if (is_endpoint_of(poly_, e.left, e.right) || is_endpoint_of(poly_, e.right, e.left)) continue;
-      const bool left_corner = e.left.kind == BoundarySite::Kind::Corner;
-      const bool right_corner = e.right.kind == BoundarySite::Kind::Corner;
-      bool inside;
-      if (left_corner || right_corner) {
-        // A corner's Voronoi cell is inside the polygon exactly when the corner is reflex.
-        inside = (!left_corner || is_reflex(e.left, vd)) && (!right_corner || is_reflex(e.right, vd));
-      } else {
-        // Two segments: the edge is inside when it lies on the inner side of its sites.
-        const Vec2 m = lerp(vd.vertices[e.a].position, vd.vertices[e.b].position, 0.5);
-        const Vec2 a = medial_detail::seg_start(poly_, e.left.loop, e.left.index);
-        inside = dot(m - a, medial_detail::inward_normal(poly_, e.left)) > 0.0;
-      }
-      if (inside) kept.push_back(i);
+      if (vd.edges[i].medial) kept.push_back(i);
     }
     return kept;
   }

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <vector>
 
 namespace laytracks::medial_detail {
 
@@ -130,6 +132,111 @@ Vec2 newton(const std::array<Constraint, 3>& cs, Vec2 x0) {
 
 }  // namespace
 
+namespace {
+
+/// Roots of a s^2 + b s + c = 0 (one root when a is negligible).
+std::vector<double> quadratic_roots(double a, double b, double c) {
+  std::vector<double> out;
+  const double scale = std::max({std::fabs(a), std::fabs(b), std::fabs(c)});
+  if (scale == 0.0) return out;
+  if (std::fabs(a) <= 1e-14 * scale) {
+    if (b != 0.0) out.push_back(-c / b);
+    return out;
+  }
+  double disc = b * b - 4.0 * a * c;
+  if (disc < 0.0) {
+    if (disc < -1e-12 * b * b) return out;
+    disc = 0.0;
+  }
+  // Numerically stable form.
+  const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+  out.push_back(q / a);
+  if (q != 0.0) out.push_back(c / q);
+  return out;
+}
+
+/// Centres of the circles touching the three constraints, in closed form (up to two).
+std::vector<Vec2> closed_form_centres(const std::array<Constraint, 3>& cs) {
+  std::array<Constraint, 3> c = cs;
+  // Points first, then lines.
+  std::stable_sort(c.begin(), c.end(),
+                   [](const Constraint& a, const Constraint& b) { return !a.is_line && b.is_line; });
+  const int points = static_cast<int>(!c[0].is_line) + !c[1].is_line + !c[2].is_line;
+  std::vector<Vec2> out;
+  if (points == 3) {  // circumcentre
+    const Vec2 b = c[1].a - c[0].a;
+    const Vec2 d = c[2].a - c[0].a;
+    const double den = 2.0 * cross(b, d);
+    if (den == 0.0) return out;
+    const double bb = dot(b, b);
+    const double dd = dot(d, d);
+    out.push_back(c[0].a + Vec2{(d.y * bb - b.y * dd) / den, (b.x * dd - d.x * bb) / den});
+    return out;
+  }
+  if (points == 0) {  // three lines: n_i . x - r = n_i . a_i
+    const double m[3][3] = {{c[0].n.x, c[0].n.y, -1.0}, {c[1].n.x, c[1].n.y, -1.0},
+                            {c[2].n.x, c[2].n.y, -1.0}};
+    const double rhs[3] = {dot(c[0].n, c[0].a), dot(c[1].n, c[1].a), dot(c[2].n, c[2].a)};
+    auto det3 = [](const double a[3][3]) {
+      return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+             a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+             a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    };
+    const double det = det3(m);
+    if (std::fabs(det) < 1e-15) return out;
+    double sol[2];
+    for (int k = 0; k < 2; ++k) {
+      double mk[3][3];
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) mk[i][j] = j == k ? rhs[i] : m[i][j];
+      }
+      sol[k] = det3(mk) / det;
+    }
+    out.push_back({sol[0], sol[1]});
+    return out;
+  }
+  // One or two points: the centre moves on a line x0 + s t, and r(s) is known along it.
+  Vec2 x0;
+  Vec2 t;
+  std::function<double(double)> unused;
+  double r0 = 0.0;
+  double r1 = 0.0;  // r(s) = r0 + r1 s for the line constraint used
+  const Constraint* line = nullptr;
+  const Constraint& p = c[0];
+  if (points == 2) {  // on the perpendicular bisector of the two points
+    x0 = lerp(c[0].a, c[1].a, 0.5);
+    const Vec2 d = c[1].a - c[0].a;
+    const double len = norm(d);
+    if (len == 0.0) return out;
+    t = perp((1.0 / len) * d);
+    line = &c[2];
+  } else {  // on the bisector of the two lines: (n1 - n2) . x = n1 . a1 - n2 . a2
+    const Vec2 g = c[1].n - c[2].n;
+    const double gg = dot(g, g);
+    if (gg < 1e-24) return out;
+    const double rhs = dot(c[1].n, c[1].a) - dot(c[2].n, c[2].a);
+    x0 = (rhs / gg) * g;
+    t = (1.0 / std::sqrt(gg)) * perp(g);
+    line = &c[1];
+  }
+  r0 = dot(x0 - line->a, line->n);
+  r1 = dot(t, line->n);
+  // |x0 + s t - p|^2 = (r0 + r1 s)^2
+  const Vec2 w = x0 - p.a;
+  const double qa = 1.0 - r1 * r1;
+  const double qb = 2.0 * (dot(w, t) - r0 * r1);
+  const double qc = dot(w, w) - r0 * r0;
+  for (double s : quadratic_roots(qa, qb, qc)) out.push_back(x0 + s * t);
+  return out;
+}
+
+/// The point where the circle centred at x touches a constraint.
+Vec2 touch(const Constraint& c, Vec2 x) {
+  return c.is_line ? x - dot(x - c.a, c.n) * c.n : c.a;
+}
+
+}  // namespace
+
 Vec2 refine_vertex(const Polygon2& poly, const std::array<BoundarySite, 3>& sites, Vec2 approx) {
   // A corner with both its segments: the vertex is the corner itself (radius 0).
   for (const auto& c : sites) {
@@ -138,7 +245,9 @@ Vec2 refine_vertex(const Polygon2& poly, const std::array<BoundarySite, 3>& site
     for (const auto& s : sites) adjacent += is_endpoint_of(poly, c, s) ? 1 : 0;
     if (adjacent == 2) return poly.loops[c.loop][c.index];
   }
-  Vec2 candidate = approx;
+  const std::array<Constraint, 3> cs = {constraint_of(poly, sites[0]), constraint_of(poly, sites[1]),
+                                        constraint_of(poly, sites[2])};
+  std::vector<Vec2> candidates;
   // A segment with one of its own end points: the vertex lies on the segment's normal at that
   // end point, at the height where the disk touches the third site.
   bool reduced = false;
@@ -148,18 +257,33 @@ Vec2 refine_vertex(const Polygon2& poly, const std::array<BoundarySite, 3>& site
       const std::size_t k = 3 - i - j;
       const Vec2 a = poly.loops[sites[i].loop][sites[i].index];
       const Vec2 n = inward_normal(poly, sites[j]);
-      const double h = ray_height(a, n, constraint_of(poly, sites[k]));
-      if (std::isfinite(h) && h >= 0.0) candidate = a + h * n;
+      const double h = ray_height(a, n, cs[k]);
+      if (std::isfinite(h) && h >= 0.0) candidates.push_back(a + h * n);
       reduced = true;
     }
   }
   if (!reduced) {
-    candidate = newton({constraint_of(poly, sites[0]), constraint_of(poly, sites[1]),
-                        constraint_of(poly, sites[2])},
-                       approx);
+    candidates = closed_form_centres(cs);
+    candidates.push_back(newton(cs, approx));
   }
-  return distance_spread(poly, sites, candidate) < distance_spread(poly, sites, approx) ? candidate
-                                                                                         : approx;
+  // The sites of a Delaunay face are counter-clockwise, and so are their touching points on
+  // the Voronoi circle: that picks the right one of two roots. Then the smaller spread wins.
+  Vec2 best = approx;
+  double best_spread = distance_spread(poly, sites, approx);
+  bool best_ccw = false;
+  for (Vec2 x : candidates) {
+    if (!std::isfinite(x.x) || !std::isfinite(x.y)) continue;
+    x = newton(cs, x);  // polish
+    const Vec2 t0 = touch(cs[0], x);
+    const bool ccw = cross(touch(cs[1], x) - t0, touch(cs[2], x) - t0) > 0.0;
+    const double spread = distance_spread(poly, sites, x);
+    if ((ccw && !best_ccw) || (ccw == best_ccw && spread < best_spread)) {
+      best = x;
+      best_spread = spread;
+      best_ccw = ccw;
+    }
+  }
+  return best;
 }
 
 }  // namespace laytracks::medial_detail

@@ -24,6 +24,10 @@ struct VoronoiEdge {
   std::uint32_t b = 0;
   BoundarySite left;
   BoundarySite right;
+  /// True when the edge belongs to the medial axis: inside the polygon, and not the normal
+  /// between a segment and its own end point. Decided combinatorially and exactly (see the
+  /// implementation), never from the computed positions.
+  bool medial = false;
 };
 
 struct VoronoiDiagram {

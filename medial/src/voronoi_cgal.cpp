@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <random>
+#include <set>
 #include <unordered_map>
 #include <utility>
 
@@ -43,6 +44,7 @@ class Builder {
 
   VoronoiDiagram run() {
     insert_sites();
+    mark_left_edges();
     VoronoiDiagram out;
     out.turn = turns();
     collect(out);
@@ -93,8 +95,52 @@ class Builder {
       const std::size_t next = loop_start[c.loop] + (c.index + 1) % polygon_.loops[c.loop].size();
       Sdg::Vertex_handle v = sdg_.insert(handles[s], handles[next]);
       site_of_[&*v] = {BoundarySite::Kind::Segment, c.loop, c.index};
+      segments_.push_back({v, handles[s], handles[next]});
     }
   }
+
+  /// Marks the dual edges on the inner (left) side of every segment site. Around a segment's
+  /// vertex the Delaunay neighbours come in counter-clockwise order: its source, the sites on
+  /// its right, its target, the sites on its left. This is combinatorial, hence exact, and
+  /// does not look at the (inexact) Voronoi vertex positions, which can be far off for the
+  /// nearly degenerate faces outside a gently curved boundary.
+  void mark_left_edges() {
+    for (const SegmentSite& seg : segments_) {
+      std::vector<Sdg::Edge> ring;
+      auto ec = sdg_.incident_edges(seg.v);
+      const auto done = ec;
+      do {
+        ring.push_back(*ec);
+      } while (++ec != done);
+      const std::size_t n = ring.size();
+      std::size_t at_source = n;
+      std::size_t at_target = n;
+      for (std::size_t k = 0; k < n; ++k) {
+        const Sdg::Vertex_handle other = other_end(ring[k], seg.v);
+        if (other == seg.source) at_source = k;
+        if (other == seg.target) at_target = k;
+      }
+      if (at_source == n || at_target == n) {
+        throw InternalError("medial axis: a segment is not adjacent to its end points");
+      }
+      for (std::size_t k = (at_target + 1) % n; k != at_source; k = (k + 1) % n) {
+        left_.insert(key(ring[k]));
+        left_.insert(key(mirror(ring[k])));
+      }
+    }
+  }
+
+  static Sdg::Vertex_handle other_end(const Sdg::Edge& e, Sdg::Vertex_handle v) {
+    const Sdg::Vertex_handle a = e.first->vertex(Sdg::ccw(e.second));
+    return a == v ? e.first->vertex(Sdg::cw(e.second)) : a;
+  }
+
+  static Sdg::Edge mirror(const Sdg::Edge& e) {
+    const Sdg::Face_handle g = e.first->neighbor(e.second);
+    return {g, g->index(e.first)};
+  }
+
+  static std::pair<const void*, int> key(const Sdg::Edge& e) { return {&*e.first, e.second}; }
 
   std::vector<std::vector<std::int8_t>> turns() const {
     std::vector<std::vector<std::int8_t>> turn(polygon_.loops.size());
@@ -139,12 +185,43 @@ class Builder {
       ve.b = face_index.at(&*g);
       ve.left = site(f->vertex(Sdg::cw(i)));
       ve.right = site(f->vertex(Sdg::ccw(i)));
+      ve.medial = is_medial(ve, *e, out.turn);
       out.edges.push_back(ve);
     }
   }
 
+  /// Whether a bounded Voronoi edge belongs to the medial axis.
+  bool is_medial(const VoronoiEdge& ve, const Sdg::Edge& e,
+                 const std::vector<std::vector<std::int8_t>>& turn) const {
+    const auto is_corner = [](const BoundarySite& s) { return s.kind == BoundarySite::Kind::Corner; };
+    const auto own_end = [&](const BoundarySite& c, const BoundarySite& s) {
+      if (!is_corner(c) || is_corner(s) || c.loop != s.loop) return false;
+      const std::size_t n = polygon_.loops[c.loop].size();
+      return c.index == s.index || c.index == (s.index + 1) % n;
+    };
+    // The normal between a segment and its own end point is not medial.
+    if (own_end(ve.left, ve.right) || own_end(ve.right, ve.left)) return false;
+    // A corner's Voronoi cell is inside the polygon exactly when the corner is reflex.
+    if (is_corner(ve.left) || is_corner(ve.right)) {
+      for (const BoundarySite& s : {ve.left, ve.right}) {
+        if (is_corner(s) && turn[s.loop][s.index] >= 0) return false;
+      }
+      return true;
+    }
+    // Two segments: inside when the edge is on the left (inner) side of its segments.
+    return left_.count(key(e)) > 0;
+  }
+
+  struct SegmentSite {
+    Sdg::Vertex_handle v;
+    Sdg::Vertex_handle source;
+    Sdg::Vertex_handle target;
+  };
+
   const Polygon2& polygon_;
   Sdg sdg_;
+  std::vector<SegmentSite> segments_;
+  std::set<std::pair<const void*, int>> left_;
   std::unordered_map<const void*, BoundarySite> site_of_;
 };
 

@@ -8,8 +8,9 @@
 
 namespace laytracks {
 
-/// Named tolerances. All lengths are relative to the part's size (bounding-box diagonal) or,
-/// for planarity, to the patch's bounding-box diagonal, as the spec says.
+/// Named tolerances. All lengths are relative to the part's size (Part::size, twice the radius
+/// of the vertices about their centroid) or, for planarity, to the patch's bounding-box
+/// diagonal, as the spec says.
 struct Tolerances {
   /// Planarity: every vertex and arc point within this x patch diagonal of the best-fit plane.
   static constexpr double kPlanarity = 1e-6;

@@ -83,8 +83,10 @@ struct Part {
   std::vector<BrepEdge> edges;
   std::vector<Patch> patches;
   MeshParams mesh;
-  Box3 bbox;             ///< of the vertices used by patches
-  double size = 0.0;     ///< bbox diagonal: the length every relative tolerance refers to
+  Box3 bbox;             ///< of the file's vertices used by patches (arcs may bulge out of it)
+  /// The length every relative tolerance refers to: twice the largest distance of a used vertex
+  /// from their centroid. Invariant under rotation and mirroring, unlike the bbox diagonal.
+  double size = 0.0;
   double chord_tol = 0;  ///< sagitta bound used to discretise arcs
   std::size_t shell_count = 0;
   std::vector<std::string> warnings;  ///< things worth telling the user that are not errors

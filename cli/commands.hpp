@@ -1,0 +1,22 @@
+// The subcommands of the laytracks executable. Each returns the process exit status and lets
+// laytracks::Error propagate; main() turns errors into messages and statuses.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace laytracks::cli {
+
+/// Exit statuses, stated in --help.
+enum Status : int {
+  kOk = 0,
+  kInputRefused = 1,  ///< the part breaks the format's rules
+  kUsage = 2,         ///< the command line is wrong
+  kInternal = 3,      ///< a stage failed its own check: a bug, please report it
+  kIo = 4,            ///< a file could not be read or written
+};
+
+int run_medial(const std::vector<std::string>& args);
+extern const char* const kMedialHelp;
+
+}  // namespace laytracks::cli

@@ -1,0 +1,48 @@
+// A small SVG writer for the pictures of every stage: panels, polylines, disks, labels.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "laytracks/brep/geometry.hpp"
+
+namespace laytracks {
+
+/// Maps a world box into a rectangle of the picture, keeping the aspect ratio, y up.
+class Panel {
+ public:
+  Panel(Box2 world, double x, double y, double width, double height, double margin);
+  Vec2 map(Vec2 p) const;
+  double scale() const { return scale_; }
+
+ private:
+  Vec2 world_lo_;
+  Vec2 offset_;
+  double scale_ = 1.0;
+  double height_ = 0.0;
+  double y_ = 0.0;
+};
+
+class SvgDocument {
+ public:
+  SvgDocument(double width, double height);
+  /// Appends an element; coordinates are picture coordinates (use Panel::map).
+  void polyline(const std::vector<Vec2>& pts, const std::string& stroke, double width,
+                bool closed = false, const std::string& fill = "none");
+  void circle(Vec2 c, double r, const std::string& fill, const std::string& stroke = "none");
+  void text(Vec2 at, const std::string& s, double size, const std::string& anchor = "start");
+  void rect(Vec2 lo, Vec2 hi, const std::string& fill, const std::string& stroke);
+  std::string str() const;
+
+ private:
+  double width_;
+  double height_;
+  std::string body_;
+};
+
+/// A colour for t in [0, 1]: dark blue (0) through green to yellow (1), like viridis.
+std::string ramp_colour(double t);
+/// Escapes &, <, > and quotes for text and attributes.
+std::string xml_escape(const std::string& s);
+
+}  // namespace laytracks

@@ -1,0 +1,23 @@
+#include "laytracks/medial/part_medial.hpp"
+
+#include "laytracks/brep/error.hpp"
+
+namespace laytracks {
+
+std::vector<MedialAxis> compute_medial_axes(const Part& part, const ProgressFn& progress) {
+  std::vector<MedialAxis> axes;
+  axes.reserve(part.patches.size());
+  MedialOptions options;
+  options.chord_tol = part.chord_tol;
+  for (std::size_t i = 0; i < part.patches.size(); ++i) {
+    try {
+      axes.push_back(compute_medial_axis(part.patches[i].polygon, options));
+    } catch (const InternalError& e) {
+      throw InternalError(part.patch_label(PatchId(i)) + ": " + e.what());
+    }
+    if (progress) progress(i + 1, part.patches.size());
+  }
+  return axes;
+}
+
+}  // namespace laytracks
