@@ -340,7 +340,9 @@ std::vector<std::string> MedialAxis::validate() const {
                          " but " + std::to_string(degree[i]) + " edges");
     }
     if (!(v.radius >= 0.0) || !std::isfinite(v.radius)) {
-      problems.push_back("vertex " + std::to_string(i) + " has radius " + std::to_string(v.radius));
+      problems.push_back("vertex " + std::to_string(i) + " at " + fmt(v.position) + " has radius " +
+                         std::to_string(v.radius) + " (" + std::to_string(v.sites.size()) +
+                         " sites)");
       continue;
     }
     if (i % step != 0) continue;

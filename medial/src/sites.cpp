@@ -248,39 +248,69 @@ Vec2 refine_vertex(const Polygon2& poly, const std::array<BoundarySite, 3>& site
   const std::array<Constraint, 3> cs = {constraint_of(poly, sites[0]), constraint_of(poly, sites[1]),
                                         constraint_of(poly, sites[2])};
   std::vector<Vec2> candidates;
-  // A segment with one of its own end points: the vertex lies on the segment's normal at that
-  // end point, at the height where the disk touches the third site.
+  // A segment with one of its own end points, or two collinear segments meeting end to end:
+  // the vertex lies on the segment's normal at that end point, at the height where the disk
+  // touches the third site. (The general formulas are singular there.)
   bool reduced = false;
+  const auto reduce_at = [&](Vec2 a, const BoundarySite& segment, const Constraint& third) {
+    const Vec2 n = inward_normal(poly, segment);
+    const double h = ray_height(a, n, third);
+    if (std::isfinite(h) && h >= 0.0) candidates.push_back(a + h * n);
+    reduced = true;
+  };
   for (std::size_t i = 0; i < 3 && !reduced; ++i) {
     for (std::size_t j = 0; j < 3 && !reduced; ++j) {
-      if (!is_endpoint_of(poly, sites[i], sites[j])) continue;
-      const std::size_t k = 3 - i - j;
-      const Vec2 a = poly.loops[sites[i].loop][sites[i].index];
-      const Vec2 n = inward_normal(poly, sites[j]);
-      const double h = ray_height(a, n, cs[k]);
-      if (std::isfinite(h) && h >= 0.0) candidates.push_back(a + h * n);
-      reduced = true;
+      if (is_endpoint_of(poly, sites[i], sites[j])) {
+        reduce_at(poly.loops[sites[i].loop][sites[i].index], sites[j], cs[3 - i - j]);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < 3 && !reduced; ++i) {
+    for (std::size_t j = i + 1; j < 3 && !reduced; ++j) {
+      const BoundarySite& a = sites[i];
+      const BoundarySite& b = sites[j];
+      if (a.kind != BoundarySite::Kind::Segment || b.kind != BoundarySite::Kind::Segment ||
+          a.loop != b.loop) {
+        continue;
+      }
+      const std::size_t n = poly.loops[a.loop].size();
+      const bool b_follows = (a.index + 1) % n == b.index;
+      const bool a_follows = (b.index + 1) % n == a.index;
+      if (!a_follows && !b_follows) continue;
+      const Vec2 da = seg_end(poly, a.loop, a.index) - seg_start(poly, a.loop, a.index);
+      const Vec2 db = seg_end(poly, b.loop, b.index) - seg_start(poly, b.loop, b.index);
+      if (std::fabs(cross(da, db)) > 1e-12 * norm(da) * norm(db) || dot(da, db) <= 0.0) continue;
+      const Vec2 joint = b_follows ? seg_start(poly, b.loop, b.index) : seg_start(poly, a.loop, a.index);
+      reduce_at(joint, a, cs[3 - i - j]);
     }
   }
   if (!reduced) {
     candidates = closed_form_centres(cs);
     candidates.push_back(newton(cs, approx));
   }
-  // The sites of a Delaunay face are counter-clockwise, and so are their touching points on
-  // the Voronoi circle: that picks the right one of two roots. Then the smaller spread wins.
+  // Only candidates at least as consistent as the approximation count. The sites of a Delaunay
+  // face are counter-clockwise, and so are their touching points on the Voronoi circle: that
+  // picks the right one of two roots. Then the smaller spread wins.
+  double approx_spread = distance_spread(poly, sites, approx);
+  if (!(approx_spread >= 0.0) || !std::isfinite(approx.x) || !std::isfinite(approx.y)) {
+    approx_spread = INFINITY;  // CGAL gave no usable point: any finite candidate is better
+  }
   Vec2 best = approx;
-  double best_spread = distance_spread(poly, sites, approx);
+  double best_spread = approx_spread;
   bool best_ccw = false;
+  bool found = false;
   for (Vec2 x : candidates) {
     if (!std::isfinite(x.x) || !std::isfinite(x.y)) continue;
-    x = newton(cs, x);  // polish
+    if (!reduced) x = newton(cs, x);  // polish
+    const double spread = distance_spread(poly, sites, x);
+    if (!std::isfinite(spread) || spread > approx_spread) continue;
     const Vec2 t0 = touch(cs[0], x);
     const bool ccw = cross(touch(cs[1], x) - t0, touch(cs[2], x) - t0) > 0.0;
-    const double spread = distance_spread(poly, sites, x);
-    if ((ccw && !best_ccw) || (ccw == best_ccw && spread < best_spread)) {
+    if (!found || (ccw && !best_ccw) || (ccw == best_ccw && spread < best_spread)) {
       best = x;
       best_spread = spread;
       best_ccw = ccw;
+      found = true;
     }
   }
   return best;
