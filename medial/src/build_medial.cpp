@@ -73,6 +73,7 @@ class Extractor {
       for (Vec2 p : loop) box.add(p);
     }
     size_ = box.diagonal();
+    centre_ = lerp(box.lo, box.hi, 0.5);
   }
 
   MedialAxis run() {
@@ -87,7 +88,9 @@ class Extractor {
 
  private:
   void refine(VoronoiDiagram& vd) const {
-    for (auto& v : vd.vertices) v.position = medial_detail::refine_vertex(poly_, v.sites, v.position);
+    for (auto& v : vd.vertices) {
+      v.position = medial_detail::refine_vertex(poly_, v.sites, v.position, centre_, size_);
+    }
   }
 
   /// Indices of the Voronoi edges that belong to the medial axis.
@@ -100,10 +103,11 @@ class Extractor {
   }
 
   Graph merge(const VoronoiDiagram& vd, const std::vector<std::uint32_t>& kept) const {
+    // Merge along every short Voronoi edge, medial or not: a zero-length edge at a straight
+    // corner (turn 0) is not medial, yet it joins two medial edges.
     UnionFind uf(vd.vertices.size());
     const double tol = kMergeRel * size_;
-    for (std::uint32_t i : kept) {
-      const auto& e = vd.edges[i];
+    for (const auto& e : vd.edges) {
       if (distance(vd.vertices[e.a].position, vd.vertices[e.b].position) <= tol) uf.unite(e.a, e.b);
     }
     // New ids for the representatives used by a non-degenerate kept edge, in first-use order.
@@ -272,6 +276,7 @@ class Extractor {
   const Polygon2& poly_;
   MedialOptions options_;
   double size_ = 0.0;
+  Vec2 centre_;
 };
 
 }  // namespace

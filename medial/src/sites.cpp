@@ -237,7 +237,8 @@ Vec2 touch(const Constraint& c, Vec2 x) {
 
 }  // namespace
 
-Vec2 refine_vertex(const Polygon2& poly, const std::array<BoundarySite, 3>& sites, Vec2 approx) {
+Vec2 refine_vertex(const Polygon2& poly, const std::array<BoundarySite, 3>& sites, Vec2 approx,
+                   Vec2 centre, double size) {
   // A corner with both its segments: the vertex is the corner itself (radius 0).
   for (const auto& c : sites) {
     if (c.kind != BoundarySite::Kind::Corner) continue;
@@ -288,28 +289,32 @@ Vec2 refine_vertex(const Polygon2& poly, const std::array<BoundarySite, 3>& site
     candidates = closed_form_centres(cs);
     candidates.push_back(newton(cs, approx));
   }
-  // Only candidates at least as consistent as the approximation count. The sites of a Delaunay
-  // face are counter-clockwise, and so are their touching points on the Voronoi circle: that
-  // picks the right one of two roots. Then the smaller spread wins.
+  // Candidates must be about as consistent as the approximation (spreads below 1e-12 x size
+  // count as equal: far from the polygon, CGAL's point can be 1e30 away with a spread of 0).
+  // The sites of a Delaunay face are counter-clockwise, and so are their touching points on
+  // the Voronoi circle: that picks the right one of two roots. Then the point nearest to the
+  // approximation wins, or the smaller circle when the approximation is far off.
   double approx_spread = distance_spread(poly, sites, approx);
-  if (!(approx_spread >= 0.0) || !std::isfinite(approx.x) || !std::isfinite(approx.y)) {
-    approx_spread = INFINITY;  // CGAL gave no usable point: any finite candidate is better
-  }
+  const bool approx_usable = approx_spread >= 0.0 && std::isfinite(approx.x) &&
+                             std::isfinite(approx.y) && norm(approx - centre) <= 4.0 * size;
+  if (!approx_usable) approx_spread = INFINITY;
+  const double accept = std::max(approx_spread, 1e-12 * size);
   Vec2 best = approx;
-  double best_spread = approx_spread;
-  bool best_ccw = false;
   bool found = false;
+  bool best_ccw = false;
+  double best_key = INFINITY;
   for (Vec2 x : candidates) {
     if (!std::isfinite(x.x) || !std::isfinite(x.y)) continue;
     if (!reduced) x = newton(cs, x);  // polish
     const double spread = distance_spread(poly, sites, x);
-    if (!std::isfinite(spread) || spread > approx_spread) continue;
+    if (!std::isfinite(spread) || spread > accept) continue;
     const Vec2 t0 = touch(cs[0], x);
     const bool ccw = cross(touch(cs[1], x) - t0, touch(cs[2], x) - t0) > 0.0;
-    if (!found || (ccw && !best_ccw) || (ccw == best_ccw && spread < best_spread)) {
+    const double key = approx_usable ? distance(x, approx) : site_distance(poly, sites[0], x);
+    if (!found || (ccw && !best_ccw) || (ccw == best_ccw && key < best_key)) {
       best = x;
-      best_spread = spread;
       best_ccw = ccw;
+      best_key = key;
       found = true;
     }
   }

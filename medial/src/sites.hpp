@@ -27,11 +27,13 @@ double site_distance(const Polygon2& poly, const BoundarySite& site, Vec2 x);
 /// True when corner site `corner` is an end point of segment site `segment`.
 bool is_endpoint_of(const Polygon2& poly, const BoundarySite& corner, const BoundarySite& segment);
 
-/// Recomputes the centre of the disk touching three sites, starting from an approximation
-/// (CGAL's inexact construction can be far off where sites are nearly degenerate). Returns the
-/// better of the approximation and the refined point: the one whose distances to the three
-/// sites agree best.
-Vec2 refine_vertex(const Polygon2& poly, const std::array<BoundarySite, 3>& sites, Vec2 approx);
+/// Recomputes the centre of the disk touching three sites (a Delaunay face, counter-clockwise),
+/// from closed forms and Newton's method, starting from an approximation (CGAL's inexact
+/// construction can be far off where sites are nearly degenerate, even 1e30 away). `centre`
+/// and `size` are the polygon's box centre and diagonal. Returns the approximation when no
+/// candidate is at least as consistent.
+Vec2 refine_vertex(const Polygon2& poly, const std::array<BoundarySite, 3>& sites, Vec2 approx,
+                   Vec2 centre, double size);
 
 /// Largest minus smallest distance from x to the sites: 0 for an exact Voronoi vertex.
 double distance_spread(const Polygon2& poly, const std::array<BoundarySite, 3>& sites, Vec2 x);
