@@ -23,7 +23,8 @@ const char* const kMedialHelp =
     "                   \"edges\":[[i,j]]}]}, coordinates in the part's 3D frame\n"
     "  --svg OUT.svg    draw each patch in its plane: boundary, axis coloured by radius,\n"
     "                   branch points in red\n"
-    "  --chord-tol T    sagitta bound for arcs (default 1e-3 x the part's bounding-box diagonal)\n"
+    "  --chord-tol T    sagitta bound for arcs, in the part's units (default 1e-3 x the part's\n"
+    "                   size: twice the largest distance of a vertex from their centroid)\n"
     "  --quiet          print nothing but errors\n";
 
 int run_medial(const std::vector<std::string>& argv) {

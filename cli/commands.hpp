@@ -10,10 +10,10 @@ namespace laytracks::cli {
 /// Exit statuses, stated in --help.
 enum Status : int {
   kOk = 0,
-  kInputRefused = 1,  ///< the part breaks the format's rules
+  kInputRefused = 1,  ///< the part breaks the format's rules, or cannot be read
   kUsage = 2,         ///< the command line is wrong
   kInternal = 3,      ///< a stage failed its own check: a bug, please report it
-  kIo = 4,            ///< a file could not be read or written
+  kIo = 4,            ///< an output file could not be written
 };
 
 int run_medial(const std::vector<std::string>& args);

@@ -20,9 +20,10 @@ const char* const kHelp =
     "The mesh, batch, check-loops and draw commands come with the rail and mesh stages; they are\n"
     "not in this build yet.\n"
     "\n"
-    "exit status: 0 done; 1 the part was refused (the message says what and where); 2 wrong\n"
-    "command line; 3 internal error (a stage failed its own check: please report it with the\n"
-    "part); 4 a file could not be read or written. On any error nothing is written.\n";
+    "exit status: 0 done; 1 the part was refused or could not be read (the message says what\n"
+    "and where); 2 wrong command line; 3 internal error (a stage failed its own check: please\n"
+    "report it with the part); 4 an output file could not be written. On any error nothing is\n"
+    "written, and an existing output file is left as it was.\n";
 
 int dispatch(const std::vector<std::string>& args) {
   using namespace laytracks::cli;

@@ -137,6 +137,31 @@ void check_planarity(const BuildState& s,
   }
 }
 
+/// When the patch's own corners (the file's vertices) are planar and the via point of one of its
+/// arcs is not, names that arc: the arc, not the whole patch, is what the user must fix.
+void blame_off_plane_arc(const BuildState& s, std::size_t p, const std::vector<VertexId>& ids,
+                         double tol) {
+  std::vector<Vec3> corners;
+  for (VertexId v : ids) {
+    if (v.index() < s.file_vertex_count()) corners.push_back(s.part.vertices[v.index()].position);
+  }
+  if (corners.size() < 3) return;
+  const Vec3 c = centroid(corners);
+  const Eigen3 e = symmetric_eigen(covariance(corners, c));
+  if (std::sqrt(std::max(0.0, e.values[1] / static_cast<double>(corners.size()))) <= tol) return;
+  const Vec3 n = e.vectors[0];
+  for (const Vec3& q : corners) {
+    if (std::fabs(dot(q - c, n)) > tol) return;  // the corners themselves are not planar
+  }
+  for (std::size_t a : s.patch_arcs[p]) {
+    const double d = std::fabs(dot(s.raw.arcs[a].via - c, n));
+    if (d > tol) {
+      fail(arc_name(s, a) + ": its via point " + point(s.raw.arcs[a].via) + " is " + len(s, d) +
+           " off the plane of " + patch_name(s, p) + " (tolerance " + len(s, tol) + ")");
+    }
+  }
+}
+
 /// Newell's normal of a closed chain (twice its vector area), about c.
 Vec3 newell_normal(const BuildState& s, const Chain& chain, Vec3 c) {
   Vec3 sum;
@@ -176,6 +201,7 @@ void fit_patch(BuildState& s, std::size_t p) {
     fail(patch_name(s, p) + " is degenerate: its points all lie on one line");
   }
   Vec3 n = e.vectors[0];
+  blame_off_plane_arc(s, p, ids, tol);
   check_planarity(s, p, ids, c, n, tol);
   const double twice_area = dot(newell_normal(s, s.chains[p][0], c), n);
   if (std::fabs(twice_area) <= 2.0 * tol * diag) {

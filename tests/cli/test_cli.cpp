@@ -1,1 +1,160 @@
+// The laytracks executable, run as a user runs it: exit statuses, messages, files written or
+// not, and byte-identical output from run to run.
 #include <catch2/catch.hpp>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <sys/wait.h>
+
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using laytracks::test::samples_dir;
+using laytracks::test::test_data_dir;
+
+namespace {
+
+struct Run {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// Runs `laytracks ARGS` through the shell, capturing stdout, stderr and the exit status.
+Run run(const std::string& args) {
+  const fs::path dir = fs::temp_directory_path() / "laytracks-cli-test";
+  fs::create_directories(dir);
+  const fs::path out = dir / "stdout.txt";
+  const fs::path err = dir / "stderr.txt";
+  const std::string cmd = std::string("'") + LAYTRACKS_EXE + "' " + args + " >'" + out.string() +
+                          "' 2>'" + err.string() + "'";
+  const int raw = std::system(cmd.c_str());
+  Run r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("laytracks-cli-" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+
+}  // namespace
+
+TEST_CASE("medial writes JSON and SVG for a sample part", "[cli]") {
+  const fs::path d = fresh_dir("medial");
+  const Run r = run("medial " + q(samples_dir() + "/bracket.json") + " --json " + q(d / "m.json") +
+                    " --svg " + q(d / "m.svg"));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("6 patches, 1 shells") != std::string::npos);
+  const auto doc = nlohmann::json::parse(slurp(d / "m.json"));
+  REQUIRE(doc["patches"].size() == 6);
+  for (const auto& p : doc["patches"]) {
+    CHECK(p["name"].is_string());
+    std::vector<int> degree(p["vertices"].size(), 0);
+    for (const auto& e : p["edges"]) {
+      ++degree.at(e[0].get<std::size_t>());
+      ++degree.at(e[1].get<std::size_t>());
+    }
+    for (std::size_t i = 0; i < degree.size(); ++i) {
+      const auto& v = p["vertices"][i];
+      CHECK(v["xyz"].size() == 3);
+      CHECK(v["radius"].get<double>() >= 0.0);
+      CHECK(v["degree"].get<int>() == degree[i]);
+    }
+  }
+  const std::string svg = slurp(d / "m.svg");
+  CHECK(svg.rfind("<?xml", 0) == 0);
+  CHECK(svg.find("upright_top") != std::string::npos);
+  CHECK(svg.find("</svg>") != std::string::npos);
+}
+
+TEST_CASE("output is byte-identical from run to run", "[cli][determinism]") {
+  const fs::path d = fresh_dir("determinism");
+  for (const char* name : {"a", "b"}) {
+    const Run r = run("medial " + q(samples_dir() + "/tray_ribs.json") + " --quiet --json " +
+                      q(d / (std::string(name) + ".json")) + " --svg " +
+                      q(d / (std::string(name) + ".svg")));
+    REQUIRE(r.status == 0);
+    CHECK(r.out.empty());
+  }
+  CHECK(slurp(d / "a.json") == slurp(d / "b.json"));
+  CHECK(slurp(d / "a.svg") == slurp(d / "b.svg"));
+}
+
+TEST_CASE("every malformed part is refused with its message, and nothing is written",
+          "[cli][invalid]") {
+  const fs::path d = fresh_dir("invalid");
+  std::ifstream table(test_data_dir() + "/invalid/expected.tsv");
+  REQUIRE(table);
+  std::string line;
+  std::size_t cases = 0;
+  while (std::getline(table, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const auto tab = line.find('\t');
+    REQUIRE(tab != std::string::npos);
+    const std::string file = line.substr(0, tab);
+    const std::string expected = line.substr(tab + 1);
+    CAPTURE(file);
+    // An existing output stays exactly as it was; a new one is never created.
+    std::ofstream(d / "old.json") << "previous content";
+    const Run r = run("medial " + q(test_data_dir() + "/invalid/" + file) + " --json " +
+                      q(d / "old.json") + " --svg " + q(d / "new.svg"));
+    CHECK(r.status == 1);
+    CHECK(r.err.rfind("laytracks: error: ", 0) == 0);
+    CHECK_THAT(r.err, Catch::Contains(expected));
+    CHECK(slurp(d / "old.json") == "previous content");
+    CHECK_FALSE(fs::exists(d / "new.svg"));
+    CHECK(std::distance(fs::directory_iterator(d), fs::directory_iterator()) == 1);
+    ++cases;
+  }
+  CHECK(cases >= 28);
+}
+
+TEST_CASE("command-line mistakes exit with status 2 and say what is wrong", "[cli][usage]") {
+  const std::string part = q(samples_dir() + "/cover_bosses.json");
+  struct Case {
+    std::string args;
+    std::string message;
+  };
+  for (const Case& c : {Case{"frobnicate", "unknown command \"frobnicate\""},
+                        Case{"medial", "medial needs exactly one PART.json"},
+                        Case{"medial " + part + " --chord-tol -1", "--chord-tol needs a positive number"},
+                        Case{"medial " + part + " --colour red", "unknown option --colour"},
+                        Case{"medial " + part + " --json", "option --json needs a value"}}) {
+    CAPTURE(c.args);
+    const Run r = run(c.args);
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Catch::Contains(c.message));
+  }
+  const Run missing = run("medial /nonexistent/part.json");
+  CHECK(missing.status == 1);
+  CHECK_THAT(missing.err, Catch::Contains("cannot read /nonexistent/part.json"));
+}
+
+TEST_CASE("help describes the commands and exits 0", "[cli]") {
+  const Run help = run("--help");
+  CHECK(help.status == 0);
+  CHECK_THAT(help.out, Catch::Contains("medial PART.json"));
+  const Run medial_help = run("medial --help");
+  CHECK(medial_help.status == 0);
+  CHECK_THAT(medial_help.out, Catch::Contains("--chord-tol"));
+}
