@@ -18,5 +18,7 @@ enum Status : int {
 
 int run_medial(const std::vector<std::string>& args);
 extern const char* const kMedialHelp;
+int run_check_loops(const std::vector<std::string>& args);
+extern const char* const kCheckLoopsHelp;
 
 }  // namespace laytracks::cli

@@ -14,11 +14,12 @@ const char* const kHelp =
     "usage: laytracks COMMAND [ARGS]\n"
     "\n"
     "commands:\n"
-    "  medial PART.json   the medial axis of every patch, as JSON and as a picture\n"
-    "  help [COMMAND]     this text, or a command's own\n"
+    "  medial PART.json       the medial axis of every patch, as JSON and as a picture\n"
+    "  check-loops PART.json  lay the rails and report how every rail chain ends\n"
+    "  help [COMMAND]         this text, or a command's own\n"
     "\n"
-    "The mesh, batch, check-loops and draw commands come with the rail and mesh stages; they are\n"
-    "not in this build yet.\n"
+    "The mesh, batch and draw commands come with the track and mesh stages; they are not in\n"
+    "this build yet.\n"
     "\n"
     "exit status: 0 done; 1 the part was refused or could not be read (the message says what\n"
     "and where); 2 wrong command line; 3 internal error (a stage failed its own check: please\n"
@@ -30,6 +31,8 @@ int dispatch(const std::vector<std::string>& args) {
   if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
     if (args.size() > 1 && args[1] == "medial") {
       std::cout << kMedialHelp;
+    } else if (args.size() > 1 && args[1] == "check-loops") {
+      std::cout << kCheckLoopsHelp;
     } else {
       std::cout << kHelp;
     }
@@ -44,6 +47,7 @@ int dispatch(const std::vector<std::string>& args) {
     if (a == "--help" || a == "-h") return dispatch({"help", args[0]});
   }
   if (args[0] == "medial") return run_medial(rest);
+  if (args[0] == "check-loops") return run_check_loops(rest);
   throw UsageError("unknown command \"" + args[0] + "\" (see laytracks --help)");
 }
 

@@ -1,0 +1,117 @@
+// Rails across patches: G-CUT-VERTs, their per-patch images (CUT-VERTs), MA-CUT-VERTs, and the
+// CUT-GRAPH that joins them (paper, section 4.1, Algorithm II).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "laytracks/brep/part.hpp"
+#include "laytracks/medial/medial_axis.hpp"
+
+namespace laytracks {
+
+using GCutId = Id<struct GCutTag>;
+using CutVertId = Id<struct CutVertTag>;
+using MaCutId = Id<struct MaCutTag>;
+using RailId = Id<struct RailTag>;
+
+/// A point of the part on its B-Rep boundary: on edge `edge` at parameter t in [0, 1] from the
+/// edge's vertex a to its vertex b, or at a B-Rep vertex (then t is 0 or 1 and `vertex` is set).
+struct GCutVert {
+  EdgeId edge;
+  double t = 0.0;
+  std::optional<VertexId> vertex;
+  Vec3 position;
+  bool source = false;  ///< a touching point of an MA branch point (a Source G-CUT-VERT)
+};
+
+/// Where a CUT-VERT sits on its patch's boundary: loop, segment (vertex i to i+1) and the
+/// parameter s along it; `u = segment + s` orders CUT-VERTs along the loop.
+struct LoopPoint {
+  std::uint32_t loop = 0;
+  std::uint32_t segment = 0;
+  double s = 0.0;
+  double u() const { return static_cast<double>(segment) + s; }
+};
+
+/// An image of a G-CUT-VERT on one patch.
+struct CutVert {
+  GCutId g;
+  PatchId patch;
+  LoopPoint at;
+  Vec2 position;  ///< in the patch frame
+};
+
+/// A point of a patch's medial axis where a rail meets it.
+struct MaCutVert {
+  PatchId patch;
+  MaPoint point;
+  std::optional<MaVertexId> vertex;  ///< set when the point is an MA vertex
+  bool branch = false;               ///< the vertex is a branch point (degree >= 3)
+  /// The vertex is an end of the axis inside the patch (degree 1, radius > 0): the centre of a
+  /// polygonised convex arc, where the rails from the arc meet.
+  bool round_end = false;
+};
+
+/// A rail segment: from a CUT-VERT to an MA-CUT-VERT of the same patch.
+struct RailSegment {
+  CutVertId cut;
+  MaCutId ma;
+};
+
+/// How a rail chain ends (see docs/cutgraph.md).
+enum class RailEnd : std::uint8_t {
+  Loop,          ///< it closes on itself
+  FreeEdge,      ///< on an edge used by one patch only
+  ConcaveVertex, ///< at a reflex corner
+  BranchPoint,   ///< at an MA branch point, where it forks
+  Junction,      ///< on an edge shared by 3 or more patches, where it forks
+  ConvexVertex,  ///< at a convex corner (a degenerate rail of length 0)
+  RoundCorner,   ///< at the centre of a rounded convex corner (a polygonised arc)
+  Lost,          ///< nowhere the geometry allows: a bug
+};
+const char* to_string(RailEnd end);
+
+/// A rail chain: a maximal path of rail segments through points where exactly two meet.
+struct RailChain {
+  std::vector<GCutId> through;  ///< the boundary points it passes, in order
+  std::vector<PatchId> patches; ///< the patches it crosses, ascending, each once
+  RailEnd start = RailEnd::Lost;
+  RailEnd end = RailEnd::Lost;
+  double closure_gap = 0.0;  ///< for loops: how far the last landing is from the first point
+  bool source = false;       ///< starts at a branch point's touching point
+};
+
+struct CutGraph {
+  std::vector<GCutVert> gverts;
+  std::vector<CutVert> cuts;
+  std::vector<MaCutVert> macuts;
+  std::vector<RailSegment> segments;
+  std::vector<RailChain> chains;
+  /// Largest distance between where a rail landed and the existing G-CUT-VERT it was
+  /// identified with (a loop closing, or two rails meeting).
+  double max_landing_gap = 0.0;
+  std::vector<std::string> problems;  ///< rails that ended where the geometry does not allow
+};
+
+struct CutGraphOptions {
+  /// Track width for uniform mode. Rails are laid in every corridor at this spacing (Eq. 1);
+  /// 0 lays only the source rails.
+  double track_width = 0.0;
+};
+
+/// Lays the rails: from the touching points of every MA branch point (Source G-CUT-VERTs),
+/// breadth first across patches through shared edges (Algorithm II); then, if a track width
+/// is given, the track rails of every corridor. `axes[p]` is the medial axis of patch p.
+CutGraph build_cut_graph(const Part& part, const std::vector<MedialAxis>& axes,
+                         const CutGraphOptions& options = {});
+
+/// The validator: no two rails cross inside a patch; every CUT-VERT on a shared edge has an
+/// image in every patch of that edge at the same 3D point; every MA-CUT-VERT lies on its axis.
+/// Returns the problems found, each a sentence; empty when valid.
+std::vector<std::string> validate_cut_graph(const Part& part, const std::vector<MedialAxis>& axes,
+                                            const CutGraph& graph);
+
+}  // namespace laytracks

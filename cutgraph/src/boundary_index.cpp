@@ -1,0 +1,116 @@
+#include "boundary_index.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace laytracks::cutgraph_detail {
+
+BoundaryIndex::BoundaryIndex(const Part& part)
+    : part_(part), edge_refs_(part.edges.size()), vertex_refs_(part.vertices.size()) {
+  for (std::size_t p = 0; p < part.patches.size(); ++p) {
+    const Patch& patch = part.patches[p];
+    for (std::uint32_t l = 0; l < patch.loops.size(); ++l) {
+      const Loop& loop = patch.loops[l];
+      for (std::uint32_t i = 0; i < loop.vertices.size(); ++i) {
+        const EdgeId e = loop.edges[i];
+        const bool forward = part.edges[e.index()].a == loop.vertices[i];
+        edge_refs_[e.index()].push_back({PatchId(p), l, i, forward});
+        vertex_refs_[loop.vertices[i].index()].push_back({PatchId(p), l, i});
+      }
+    }
+  }
+}
+
+EdgeId BoundaryIndex::edge_at(PatchId p, std::uint32_t loop, std::uint32_t seg) const {
+  return part_.patches[p.index()].loops[loop].edges[seg];
+}
+
+double BoundaryIndex::edge_param(PatchId p, std::uint32_t loop, std::uint32_t seg, double s) const {
+  const Loop& l = part_.patches[p.index()].loops[loop];
+  const bool forward = part_.edges[l.edges[seg].index()].a == l.vertices[seg];
+  return forward ? s : 1.0 - s;
+}
+
+int corner_turn(const Part& part, PatchId p, std::uint32_t loop, std::uint32_t index) {
+  const Polygon2& poly = part.patches[p.index()].polygon;
+  if (poly.smooth[loop][index]) return 0;
+  const auto& l = poly.loops[loop];
+  const std::size_t n = l.size();
+  const Vec2 a = l[(index + n - 1) % n];
+  const Vec2 b = l[index];
+  const Vec2 c = l[(index + 1) % n];
+  const double t = cross(b - a, c - b);
+  return t > 0.0 ? 1 : t < 0.0 ? -1 : 0;
+}
+
+GCutId GCutRegistry::find_or_add(EdgeId e, double t, std::vector<GCutVert>& gverts, double* gap,
+                                 bool* created) {
+  const BrepEdge& edge = part_.edges[e.index()];
+  const Vec3 a = part_.vertices[edge.a.index()].position;
+  const Vec3 b = part_.vertices[edge.b.index()].position;
+  const double len = distance(a, b);
+  t = std::clamp(t, 0.0, 1.0);
+  *gap = 0.0;
+  if (t * len <= tol_) {
+    *gap = t * len;
+    return find_or_add_vertex(edge.a, gverts, created);
+  }
+  if ((1.0 - t) * len <= tol_) {
+    *gap = (1.0 - t) * len;
+    return find_or_add_vertex(edge.b, gverts, created);
+  }
+  if (on_edge_.size() < part_.edges.size()) on_edge_.resize(part_.edges.size());
+  auto& list = on_edge_[e.index()];
+  auto it = std::lower_bound(list.begin(), list.end(), std::make_pair(t, GCutId()),
+                             [](const auto& x, const auto& y) { return x.first < y.first; });
+  double best = INFINITY;
+  GCutId found;
+  for (auto j = it; j != list.end() && (j->first - t) * len <= tol_; ++j) {
+    if ((j->first - t) * len < best) best = (j->first - t) * len, found = j->second;
+  }
+  for (auto j = it; j != list.begin();) {
+    --j;
+    if ((t - j->first) * len > tol_) break;
+    if ((t - j->first) * len < best) best = (t - j->first) * len, found = j->second;
+  }
+  if (found.valid()) {
+    *gap = best;
+    *created = false;
+    return found;
+  }
+  GCutVert g;
+  g.edge = e;
+  g.t = t;
+  g.position = a + t * (b - a);
+  const GCutId id(gverts.size());
+  gverts.push_back(g);
+  list.insert(it, {t, id});
+  *created = true;
+  return id;
+}
+
+GCutId GCutRegistry::find_or_add_vertex(VertexId v, std::vector<GCutVert>& gverts, bool* created) {
+  const auto it = at_vertex_.find(v.value);
+  if (it != at_vertex_.end()) {
+    *created = false;
+    return it->second;
+  }
+  GCutVert g;
+  g.vertex = v;
+  g.position = part_.vertices[v.index()].position;
+  // Any edge of the vertex will do as `edge`; pick the first that uses it.
+  for (std::size_t e = 0; e < part_.edges.size(); ++e) {
+    if (part_.edges[e].a == v || part_.edges[e].b == v) {
+      g.edge = EdgeId(e);
+      g.t = part_.edges[e].a == v ? 0.0 : 1.0;
+      break;
+    }
+  }
+  const GCutId id(gverts.size());
+  gverts.push_back(g);
+  at_vertex_[v.value] = id;
+  *created = true;
+  return id;
+}
+
+}  // namespace laytracks::cutgraph_detail

@@ -1,0 +1,69 @@
+// Private: how B-Rep edges and vertices appear on each patch's boundary, and the registry of
+// G-CUT-VERTs, which identifies a point landing within a tolerance of an existing one.
+#pragma once
+
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "laytracks/brep/part.hpp"
+#include "laytracks/cutgraph/cut_graph.hpp"
+
+namespace laytracks::cutgraph_detail {
+
+/// A B-Rep edge as segment `seg` of loop `loop` of patch `patch`; `forward` when the segment runs
+/// from the edge's vertex a to its vertex b.
+struct SegmentRef {
+  PatchId patch;
+  std::uint32_t loop = 0;
+  std::uint32_t seg = 0;
+  bool forward = true;
+};
+
+/// A B-Rep vertex as corner `index` of loop `loop` of patch `patch`.
+struct CornerRef {
+  PatchId patch;
+  std::uint32_t loop = 0;
+  std::uint32_t index = 0;
+};
+
+class BoundaryIndex {
+ public:
+  explicit BoundaryIndex(const Part& part);
+
+  const std::vector<SegmentRef>& segments_of(EdgeId e) const { return edge_refs_[e.index()]; }
+  const std::vector<CornerRef>& corners_of(VertexId v) const { return vertex_refs_[v.index()]; }
+  /// The B-Rep edge under segment `seg` of a loop, and the edge parameter of s along it.
+  EdgeId edge_at(PatchId p, std::uint32_t loop, std::uint32_t seg) const;
+  double edge_param(PatchId p, std::uint32_t loop, std::uint32_t seg, double s) const;
+
+ private:
+  const Part& part_;
+  std::vector<std::vector<SegmentRef>> edge_refs_;
+  std::vector<std::vector<CornerRef>> vertex_refs_;
+};
+
+/// Turn at a corner of a patch: +1 convex, -1 reflex, 0 straight or smooth.
+int corner_turn(const Part& part, PatchId p, std::uint32_t loop, std::uint32_t index);
+
+/// The G-CUT-VERTs of a part, found again by position.
+class GCutRegistry {
+ public:
+  /// `tolerance`: two points closer than this (part units) are the same G-CUT-VERT.
+  GCutRegistry(const Part& part, double tolerance) : part_(part), tol_(tolerance) {}
+
+  /// The G-CUT-VERT at parameter t of edge e (snapped to the edge's vertices within the
+  /// tolerance), creating it if needed. `gap` receives the distance to an existing one that was
+  /// reused (0 for a new one); `created` whether it is new.
+  GCutId find_or_add(EdgeId e, double t, std::vector<GCutVert>& gverts, double* gap,
+                     bool* created);
+  GCutId find_or_add_vertex(VertexId v, std::vector<GCutVert>& gverts, bool* created);
+
+ private:
+  const Part& part_;
+  double tol_;
+  std::vector<std::vector<std::pair<double, GCutId>>> on_edge_;  // sorted by t, per edge
+  std::map<std::uint32_t, GCutId> at_vertex_;
+};
+
+}  // namespace laytracks::cutgraph_detail

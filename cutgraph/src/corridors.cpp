@@ -1,0 +1,237 @@
+#include "corridors.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+
+#include "boundary_index.hpp"
+
+namespace laytracks::cutgraph_detail {
+namespace {
+
+struct UnionFind {
+  std::vector<std::size_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  std::size_t find(std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(std::size_t a, std::size_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+/// Point at loop parameter u (wrapped) of a polygon loop.
+Vec2 point_at(const std::vector<Vec2>& loop, double u, std::uint32_t* seg, double* s) {
+  const std::size_t n = loop.size();
+  u = std::fmod(u, static_cast<double>(n));
+  if (u < 0) u += static_cast<double>(n);
+  std::size_t i = std::min(static_cast<std::size_t>(u), n - 1);
+  *seg = static_cast<std::uint32_t>(i);
+  *s = u - static_cast<double>(i);
+  return lerp(loop[i], loop[(i + 1) % n], *s);
+}
+
+/// Length of the loop from parameter u0 to u1 (u1 >= u0, may wrap once).
+double length_between(const std::vector<Vec2>& loop, double u0, double u1) {
+  const std::size_t n = loop.size();
+  double len = 0.0;
+  double u = u0;
+  while (u < u1 - 1e-15) {
+    const double next = std::min(u1, std::floor(u) + 1.0);
+    const std::size_t i = static_cast<std::size_t>(std::floor(u)) % n;
+    len += (next - u) * distance(loop[i], loop[(i + 1) % n]);
+    u = next;
+  }
+  return len;
+}
+
+class Finder {
+ public:
+  Finder(const Part& part, const std::vector<MedialAxis>& axes, const CutGraph& graph)
+      : part_(part), axes_(axes), graph_(graph), index_(part) {}
+
+  Corridors run() {
+    build_segs();
+    UnionFind uf(out_.segs.size() + fan_nodes());
+    for (std::size_t i = 0; i < out_.segs.size(); ++i) {
+      link_opposite(i, uf);
+      link_across(i, uf);
+    }
+    std::map<std::size_t, std::size_t> number;
+    for (std::size_t i = 0; i < out_.segs.size(); ++i) {
+      const std::size_t r = uf.find(i);
+      if (!number.count(r)) number[r] = number.size();
+      out_.segs[i].corridor = number[r];
+    }
+    out_.count = number.size();
+    return out_;
+  }
+
+ private:
+  /// Break points of every loop: its CUT-VERTs and its non-smooth corners.
+  void build_segs() {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<double>> breaks;
+    for (const CutVert& c : graph_.cuts) {
+      const double n = static_cast<double>(part_.patches[c.patch.index()].polygon.loops[c.at.loop].size());
+      breaks[{c.patch.value, c.at.loop}].push_back(std::fmod(c.at.u(), n));
+    }
+    for (std::uint32_t p = 0; p < part_.patches.size(); ++p) {
+      const Patch& patch = part_.patches[p];
+      for (std::uint32_t l = 0; l < patch.loops.size(); ++l) {
+        auto& b = breaks[{p, l}];
+        for (std::uint32_t i = 0; i < patch.loops[l].vertices.size(); ++i) {
+          if (corner_turn(part_, PatchId(p), l, i) != 0) b.push_back(static_cast<double>(i));
+        }
+        std::sort(b.begin(), b.end());
+        b.erase(std::unique(b.begin(), b.end(), [](double x, double y) { return y - x < 1e-12; }),
+                b.end());
+        const auto& poly = patch.polygon.loops[l];
+        const double n = static_cast<double>(poly.size());
+        first_seg_[{p, l}] = out_.segs.size();
+        if (b.empty()) {  // a loop without rails or corners: one CUT-SEG all round
+          out_.segs.push_back({PatchId(p), l, 0.0, n, length_between(poly, 0.0, n), 0});
+          continue;
+        }
+        for (std::size_t k = 0; k < b.size(); ++k) {
+          const double u0 = b[k];
+          const double u1 = k + 1 < b.size() ? b[k + 1] : b[0] + n;
+          out_.segs.push_back({PatchId(p), l, u0, u1, length_between(poly, u0, u1), 0});
+        }
+        breaks_[{p, l}] = b;
+      }
+    }
+  }
+
+  std::size_t fan_nodes() {
+    fan_base_ = out_.segs.size();
+    std::size_t n = 0;
+    for (std::uint32_t p = 0; p < part_.patches.size(); ++p) {
+      for (std::uint32_t l = 0; l < part_.patches[p].loops.size(); ++l) {
+        for (std::uint32_t i = 0; i < part_.patches[p].loops[l].vertices.size(); ++i) {
+          fan_[{p, l, i}] = fan_base_ + n++;
+        }
+      }
+    }
+    return n;
+  }
+
+  /// The CUT-SEG of loop l of patch p that contains parameter u.
+  std::size_t seg_at(std::uint32_t p, std::uint32_t l, double u) const {
+    const std::size_t first = first_seg_.at({p, l});
+    const double n = static_cast<double>(part_.patches[p].polygon.loops[l].size());
+    u = std::fmod(u, n);
+    if (u < 0.0) u += n;
+    const auto it = breaks_.find({p, l});
+    if (it == breaks_.end()) return first;
+    const auto& b = it->second;
+    const auto k = std::upper_bound(b.begin(), b.end(), u) - b.begin();
+    // Before the first break: the last CUT-SEG, which wraps round.
+    return first + (k == 0 ? b.size() - 1 : static_cast<std::size_t>(k) - 1);
+  }
+
+  void link_opposite(std::size_t i, UnionFind& uf) const {
+    const CutSeg& cs = out_.segs[i];
+    const auto& poly = part_.patches[cs.patch.index()].polygon.loops[cs.loop];
+    BoundaryPoint bp;
+    std::uint32_t seg;
+    double s;
+    bp.position = point_at(poly, 0.5 * (cs.u0 + cs.u1), &seg, &s);
+    bp.site = {BoundarySite::Kind::Segment, cs.loop, seg};
+    bp.s = s;
+    const auto q = axes_[cs.patch.index()].opposite(bp);
+    if (!q) return;
+    if (q->site.kind == BoundarySite::Kind::Corner) {
+      uf.unite(i, fan_.at({cs.patch.value, q->site.loop, q->site.index}));
+      return;
+    }
+    uf.unite(i, seg_at(cs.patch.value, q->site.loop, static_cast<double>(q->site.index) + q->s));
+  }
+
+  /// Joins a CUT-SEG with the CUT-SEGs of the other patches on each B-Rep edge it covers.
+  void link_across(std::size_t i, UnionFind& uf) const {
+    const CutSeg& cs = out_.segs[i];
+    const std::size_t n = part_.patches[cs.patch.index()].polygon.loops[cs.loop].size();
+    for (double u = cs.u0; u < cs.u1 - 1e-12;) {
+      const double next = std::min(cs.u1, std::floor(u) + 1.0);
+      const double mid = 0.5 * (u + next);
+      const std::uint32_t seg = static_cast<std::uint32_t>(static_cast<std::size_t>(std::floor(mid)) % n);
+      const double s = mid - std::floor(mid);
+      const EdgeId e = index_.edge_at(cs.patch, cs.loop, seg);
+      const double t = index_.edge_param(cs.patch, cs.loop, seg, s);
+      for (const SegmentRef& r : index_.segments_of(e)) {
+        if (r.patch == cs.patch && r.loop == cs.loop && r.seg == seg) continue;
+        const double s2 = r.forward ? t : 1.0 - t;
+        uf.unite(i, seg_at(r.patch.value, r.loop, static_cast<double>(r.seg) + s2));
+      }
+      u = next;
+    }
+  }
+
+  const Part& part_;
+  const std::vector<MedialAxis>& axes_;
+  const CutGraph& graph_;
+  BoundaryIndex index_;
+  Corridors out_;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> first_seg_;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<double>> breaks_;
+  std::map<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>, std::size_t> fan_;
+  std::size_t fan_base_ = 0;
+};
+
+}  // namespace
+
+Corridors find_corridors(const Part& part, const std::vector<MedialAxis>& axes,
+                         const CutGraph& graph) {
+  return Finder(part, axes, graph).run();
+}
+
+std::vector<TrackSeed> track_seeds(const Part& part, const std::vector<MedialAxis>& axes,
+                                   const CutGraph& graph, double width) {
+  const Corridors corridors = find_corridors(part, axes, graph);
+  // The longest CUT-SEG of each corridor (the first one on ties: deterministic).
+  std::vector<std::size_t> master(corridors.count, SIZE_MAX);
+  for (std::size_t i = 0; i < corridors.segs.size(); ++i) {
+    std::size_t& m = master[corridors.segs[i].corridor];
+    if (m == SIZE_MAX || corridors.segs[i].length > corridors.segs[m].length) m = i;
+  }
+  std::vector<TrackSeed> seeds;
+  for (std::size_t m : master) {
+    if (m == SIZE_MAX) continue;
+    const CutSeg& cs = corridors.segs[m];
+    const double tracks = std::max(1.0, std::ceil(cs.length / width - 0.5));
+    const auto& poly = part.patches[cs.patch.index()].polygon.loops[cs.loop];
+    for (int k = 1; k < static_cast<int>(tracks); ++k) {
+      // Walk the boundary to the arc length k L / n.
+      const double target = cs.length * k / tracks;
+      double u = cs.u0;
+      double walked = 0.0;
+      while (true) {
+        const double next = std::min(cs.u1, std::floor(u) + 1.0);
+        const std::size_t i = static_cast<std::size_t>(std::floor(u)) % poly.size();
+        const double seg_len = distance(poly[i], poly[(i + 1) % poly.size()]);
+        const double piece = (next - u) * seg_len;
+        if (walked + piece >= target || next >= cs.u1) {
+          u += seg_len > 0.0 ? (target - walked) / seg_len : 0.0;
+          break;
+        }
+        walked += piece;
+        u = next;
+      }
+      TrackSeed seed;
+      seed.patch = cs.patch;
+      std::uint32_t seg;
+      double s;
+      seed.point.position = point_at(poly, u, &seg, &s);
+      seed.point.site = {BoundarySite::Kind::Segment, cs.loop, seg};
+      seed.point.s = s;
+      seeds.push_back(seed);
+    }
+  }
+  return seeds;
+}
+
+}  // namespace laytracks::cutgraph_detail

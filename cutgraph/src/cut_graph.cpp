@@ -1,0 +1,364 @@
+// Algorithm II of the paper: rails laid breadth first from the Source G-CUT-VERTs, across
+// patches through shared edges; then, in uniform mode, the track rails of every corridor.
+// The rules chosen where the paper is silent are in docs/cutgraph.md.
+#include "laytracks/cutgraph/cut_graph.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <map>
+#include <sstream>
+
+#include "boundary_index.hpp"
+#include "corridors.hpp"
+
+namespace laytracks {
+
+using cutgraph_detail::BoundaryIndex;
+using cutgraph_detail::corner_turn;
+using cutgraph_detail::GCutRegistry;
+
+const char* to_string(RailEnd end) {
+  switch (end) {
+    case RailEnd::Loop: return "loop";
+    case RailEnd::FreeEdge: return "free-edge";
+    case RailEnd::ConcaveVertex: return "concave-vertex";
+    case RailEnd::BranchPoint: return "branch-point";
+    case RailEnd::Junction: return "junction";
+    case RailEnd::ConvexVertex: return "convex-vertex";
+    case RailEnd::RoundCorner: return "round-corner";
+    case RailEnd::Lost: return "lost";
+  }
+  return "lost";
+}
+
+namespace cutgraph_detail {
+
+/// Two G-CUT-VERTs closer than this x the part size are one point (a rail closing a loop lands
+/// on its start, up to rounding).
+constexpr double kSamePointRel = 1e-7;
+/// An MA point within this parameter distance of an edge's end is that end's vertex.
+constexpr double kAtVertexT = 1e-9;
+
+class RailLayer {
+ public:
+  RailLayer(const Part& part, const std::vector<MedialAxis>& axes, CutGraph& graph)
+      : part_(part), axes_(axes), g_(graph), index_(part),
+        registry_(part, kSamePointRel * part.size) {}
+
+  /// Registers the touching points of every branch point as sources and lays their rails.
+  void lay_sources() {
+    for (std::size_t p = 0; p < axes_.size(); ++p) {
+      const PatchId pid(p);
+      for (MaVertexId v : axes_[p].branch_points()) {
+        for (const BoundaryPoint& bp : axes_[p].touching_points(v)) {
+          const GCutId g = gcut_of(pid, bp, nullptr);
+          g_.gverts[g.index()].source = true;
+          if (g_.gverts[g.index()].vertex && touches_corner(pid, bp)) {
+            // A branch point touching a reflex corner: the rail is one ray of the corner's fan
+            // (Fig. 13), laid here; the corner's other images end there.
+            const LoopPoint at{bp.site.loop, bp.site.index, 0.0};
+            const CutVertId c = cut_of(g, pid).value_or(make_cut(g, pid, at));
+            MaPoint m;
+            const MedialAxis& ma = axes_[p];
+            m.edge = ma.incident(v).front();
+            m.t = ma.edge(m.edge).a == v ? 0.0 : 1.0;
+            m.position = ma.vertex(v).position;
+            m.radius = ma.vertex(v).radius;
+            const MaCutId mc = make_macut(pid, m);
+            g_.segments.push_back({c, mc});
+            links_.push_back({g.value, node_of(mc), pid, 0.0});
+          }
+          queue_.push_back(g);
+        }
+      }
+    }
+    run();
+  }
+
+  /// Lays the rail through a boundary point of patch p (a track rail), and all it leads to.
+  void lay_from(PatchId p, const BoundaryPoint& bp) {
+    queue_.push_back(gcut_of(p, bp, nullptr));
+    run();
+  }
+
+  /// The CUT-VERT of G-CUT-VERT g on patch p, if one was made.
+  std::optional<CutVertId> cut_of(GCutId g, PatchId p) const {
+    const auto it = cut_at_.find({g.value, p.value});
+    if (it == cut_at_.end()) return std::nullopt;
+    return it->second;
+  }
+
+  /// Per landing: the two G-CUT-VERTs a rail piece joins in a patch, through an MA-CUT-VERT.
+  struct Link {
+    std::uint32_t from;  ///< node: G-CUT-VERT index, or gverts.size() + MA-CUT-VERT index
+    std::uint32_t to;
+    PatchId patch;
+    double gap = 0.0;
+  };
+  const std::vector<Link>& links() const { return links_; }
+
+ private:
+  /// Breadth first over the queued G-CUT-VERTs: each unvisited image lays its rail.
+  void run() {
+    while (!queue_.empty()) {
+      const GCutId g = queue_.front();
+      queue_.pop_front();
+      for (const auto& [p, at] : images(g)) {
+        if (cut_at_.count({g.value, p.value})) continue;  // visited
+        const CutVertId c = make_cut(g, p, at);
+        lay_rail(c);
+      }
+    }
+  }
+
+  std::vector<std::pair<PatchId, LoopPoint>> images(GCutId id) const {
+    const GCutVert& g = g_.gverts[id.index()];
+    std::vector<std::pair<PatchId, LoopPoint>> out;
+    if (g.vertex) {
+      for (const auto& c : index_.corners_of(*g.vertex)) out.push_back({c.patch, {c.loop, c.index, 0.0}});
+      return out;
+    }
+    for (const auto& s : index_.segments_of(g.edge)) {
+      out.push_back({s.patch, {s.loop, s.seg, s.forward ? g.t : 1.0 - g.t}});
+    }
+    return out;
+  }
+
+  CutVertId make_cut(GCutId g, PatchId p, const LoopPoint& at) {
+    CutVert c;
+    c.g = g;
+    c.patch = p;
+    c.at = at;
+    const auto& loop = part_.patches[p.index()].polygon.loops[at.loop];
+    c.position = lerp(loop[at.segment], loop[(at.segment + 1) % loop.size()], at.s);
+    const CutVertId id(g_.cuts.size());
+    g_.cuts.push_back(c);
+    cut_at_[{g.value, p.value}] = id;
+    return id;
+  }
+
+  /// True when a touching point is a corner of the patch (a reflex corner, for an MA vertex).
+  static bool touches_corner(PatchId, const BoundaryPoint& bp) {
+    return bp.site.kind == BoundarySite::Kind::Corner;
+  }
+
+  /// The G-CUT-VERT at a boundary point of patch p (a segment point or a corner).
+  GCutId gcut_of(PatchId p, const BoundaryPoint& bp, double* gap) {
+    bool created = false;
+    double d = 0.0;
+    GCutId id;
+    if (bp.site.kind == BoundarySite::Kind::Corner) {
+      const VertexId v = part_.patches[p.index()].loops[bp.site.loop].vertices[bp.site.index];
+      id = registry_.find_or_add_vertex(v, g_.gverts, &created);
+    } else {
+      const EdgeId e = index_.edge_at(p, bp.site.loop, bp.site.index);
+      id = registry_.find_or_add(e, index_.edge_param(p, bp.site.loop, bp.site.index, bp.s),
+                                 g_.gverts, &d, &created);
+    }
+    if (gap) *gap = d;
+    return id;
+  }
+
+  /// The rail from CUT-VERT c into its patch: to the MA, and on to the other side(s).
+  void lay_rail(CutVertId cid) {
+    const CutVert c = g_.cuts[cid.index()];
+    const PatchId p = c.patch;
+    BoundaryPoint bp;
+    bp.site = {BoundarySite::Kind::Segment, c.at.loop, c.at.segment};
+    bp.s = c.at.s;
+    bp.position = c.position;
+    if (c.at.s == 0.0 && g_.gverts[c.g.index()].vertex) {
+      const int turn = corner_turn(part_, p, c.at.loop, c.at.segment);
+      if (turn != 0) return;  // a rail ends at a corner: concave (fan) or convex (length 0)
+    }
+    const MedialAxis& ma = axes_[p.index()];
+    const std::optional<MaPoint> m = ma.project(bp);
+    if (!m) {
+      problem("a rail from " + where(cid) + " found no medial axis point");
+      return;
+    }
+    const MaCutId mc = make_macut(p, *m);
+    g_.segments.push_back({cid, mc});
+    const MaCutVert& mcv = g_.macuts[mc.index()];
+    if (mcv.branch || mcv.round_end) {
+      // The touching points of a branch point are the sources: their CUT-VERTs exist or will.
+      // At the centre of a rounded corner the rails of the arc meet, and end.
+      links_.push_back({c.g.value, node_of(mc), p, 0.0});
+      return;
+    }
+    const MaEdge& e = ma.edge(m->edge);
+    const Side other = e.left == bp.site ? Side::Right : Side::Left;
+    const BoundaryPoint target = ma.touching_point(*m, other);
+    double gap = 0.0;
+    const GCutId g2 = gcut_of(p, target, &gap);
+    g_.max_landing_gap = std::max(g_.max_landing_gap, gap);
+    std::optional<CutVertId> landed = cut_of(g2, p);
+    if (!landed) {
+      LoopPoint at{target.site.loop, target.site.index,
+                   target.site.kind == BoundarySite::Kind::Corner ? 0.0 : target.s};
+      landed = make_cut(g2, p, at);
+    }
+    g_.segments.push_back({*landed, mc});
+    links_.push_back({c.g.value, g2.value, p, gap});
+    queue_.push_back(g2);
+  }
+
+  MaCutId make_macut(PatchId p, const MaPoint& m) {
+    const MedialAxis& ma = axes_[p.index()];
+    const MaEdge& e = ma.edge(m.edge);
+    std::optional<MaVertexId> v;
+    if (m.t <= kAtVertexT) v = e.a;
+    if (m.t >= 1.0 - kAtVertexT) v = e.b;
+    const bool branch = v && ma.vertex(*v).degree >= 3;
+    const bool round_end = v && ma.vertex(*v).degree == 1 && ma.vertex(*v).radius > 0.0;
+    if (branch || round_end) {
+      const auto it = branch_at_.find({p.value, v->value});
+      if (it != branch_at_.end()) return it->second;
+    }
+    MaCutVert mc;
+    mc.patch = p;
+    mc.point = m;
+    mc.vertex = v;
+    mc.branch = branch;
+    mc.round_end = round_end;
+    const MaCutId id(g_.macuts.size());
+    g_.macuts.push_back(mc);
+    if (branch || round_end) branch_at_[{p.value, v->value}] = id;
+    return id;
+  }
+
+  std::uint32_t node_of(MaCutId m) const {
+    return static_cast<std::uint32_t>(1u << 31) | m.value;
+  }
+
+  std::string where(CutVertId c) const {
+    const CutVert& cv = g_.cuts[c.index()];
+    const Vec3 x = g_.gverts[cv.g.index()].position;
+    std::ostringstream s;
+    s << part_.patch_label(cv.patch) << " at (" << x.x << ", " << x.y << ", " << x.z << ")";
+    return s.str();
+  }
+
+  void problem(const std::string& what) { g_.problems.push_back(what); }
+
+  const Part& part_;
+  const std::vector<MedialAxis>& axes_;
+  CutGraph& g_;
+  BoundaryIndex index_;
+  GCutRegistry registry_;
+  std::deque<GCutId> queue_;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, CutVertId> cut_at_;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, MaCutId> branch_at_;
+  std::vector<Link> links_;
+};
+
+/// Splits the rail network into chains: maximal paths through points where exactly two rail
+/// pieces meet; what is left are loops.
+void extract_chains(const Part& part, const BoundaryIndex& index, const RailLayer& layer,
+                    CutGraph& g) {
+  constexpr std::uint32_t kMaFlag = 1u << 31;
+  std::map<std::uint32_t, std::vector<std::size_t>> at;  // node -> link indices
+  const auto& links = layer.links();
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    at[links[i].from].push_back(i);
+    at[links[i].to].push_back(i);
+  }
+  const auto end_kind = [&](std::uint32_t node) {
+    if (node & kMaFlag) {
+      return g.macuts[node & ~kMaFlag].branch ? RailEnd::BranchPoint : RailEnd::RoundCorner;
+    }
+    const std::size_t degree = at[node].size();
+    if (degree >= 3) return RailEnd::Junction;
+    const GCutVert& gv = g.gverts[node];
+    if (gv.vertex) {
+      bool free = true;
+      for (const auto& c : index.corners_of(*gv.vertex)) {
+        const int turn = corner_turn(part, c.patch, c.loop, c.index);
+        if (turn < 0) return RailEnd::ConcaveVertex;
+        if (turn > 0) return RailEnd::ConvexVertex;
+        const Loop& loop = part.patches[c.patch.index()].loops[c.loop];
+        const std::size_t n = loop.edges.size();
+        for (EdgeId e : {loop.edges[c.index], loop.edges[(c.index + n - 1) % n]}) {
+          free = free && part.edges[e.index()].patches.size() == 1;
+        }
+      }
+      // A smooth or straight corner is an ordinary boundary point.
+      return degree == 1 && free ? RailEnd::FreeEdge : RailEnd::Lost;
+    }
+    if (degree == 1 && part.edges[gv.edge.index()].patches.size() == 1) return RailEnd::FreeEdge;
+    return RailEnd::Lost;
+  };
+  std::vector<bool> used(links.size(), false);
+  const auto walk = [&](std::uint32_t start, std::size_t first) {
+    RailChain chain;
+    chain.start = end_kind(start);
+    std::uint32_t node = start;
+    std::size_t li = first;
+    std::vector<PatchId> patches;
+    while (true) {
+      used[li] = true;
+      const auto& l = links[li];
+      patches.push_back(l.patch);
+      chain.closure_gap = std::max(chain.closure_gap, l.gap);
+      if (!(node & kMaFlag)) chain.through.push_back(GCutId(node));
+      node = l.from == node ? l.to : l.from;
+      if (node == start && at[node].size() == 2) {
+        chain.start = chain.end = RailEnd::Loop;
+        break;
+      }
+      if ((node & kMaFlag) || at[node].size() != 2) {
+        if (!(node & kMaFlag)) chain.through.push_back(GCutId(node));
+        chain.end = end_kind(node);
+        break;
+      }
+      const auto& next = at[node];
+      li = used[next[0]] ? next[1] : next[0];
+      if (used[li]) {
+        chain.end = RailEnd::Loop;
+        break;
+      }
+    }
+    std::sort(patches.begin(), patches.end());
+    patches.erase(std::unique(patches.begin(), patches.end()), patches.end());
+    chain.patches = patches;
+    chain.source = std::any_of(chain.through.begin(), chain.through.end(),
+                               [&](GCutId id) { return g.gverts[id.index()].source; });
+    if (chain.end != RailEnd::Loop) chain.closure_gap = 0.0;
+    g.chains.push_back(std::move(chain));
+  };
+  for (const auto& [node, list] : at) {
+    if ((node & kMaFlag) || list.size() != 2) {
+      for (std::size_t li : list) {
+        if (!used[li]) walk(node, li);
+      }
+    }
+  }
+  for (std::size_t li = 0; li < links.size(); ++li) {
+    if (!used[li]) walk(links[li].from, li);  // what is left: loops
+  }
+}
+
+}  // namespace cutgraph_detail
+
+CutGraph build_cut_graph(const Part& part, const std::vector<MedialAxis>& axes,
+                         const CutGraphOptions& options) {
+  CutGraph graph;
+  cutgraph_detail::RailLayer layer(part, axes, graph);
+  layer.lay_sources();
+  if (options.track_width > 0.0) {
+    for (const auto& seed : cutgraph_detail::track_seeds(part, axes, graph, options.track_width)) {
+      layer.lay_from(seed.patch, seed.point);
+    }
+  }
+  cutgraph_detail::extract_chains(part, cutgraph_detail::BoundaryIndex(part), layer, graph);
+  for (const RailChain& c : graph.chains) {
+    if (c.start == RailEnd::Lost || c.end == RailEnd::Lost) {
+      graph.problems.push_back("a rail chain through " + std::to_string(c.through.size()) +
+                               " boundary points ends where the geometry allows no end");
+    }
+  }
+  return graph;
+}
+
+}  // namespace laytracks

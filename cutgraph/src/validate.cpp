@@ -1,0 +1,105 @@
+// The validator of the cut graph (docs/cutgraph.md): what must hold once the rails are laid.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "boundary_index.hpp"
+#include "laytracks/cutgraph/cut_graph.hpp"
+
+namespace laytracks {
+namespace {
+
+std::string fmt(Vec3 p) {
+  std::ostringstream s;
+  s.precision(6);
+  s << "(" << p.x << ", " << p.y << ", " << p.z << ")";
+  return s.str();
+}
+
+/// Orientation of c relative to a -> b, with a relative dead band for collinear points.
+int side(Vec2 a, Vec2 b, Vec2 c, double eps) {
+  const double d = cross(b - a, c - a);
+  return d > eps ? 1 : d < -eps ? -1 : 0;
+}
+
+/// True when the closed segments ab and cd cross at a point that is not a shared end point.
+bool cross_inside(Vec2 a, Vec2 b, Vec2 c, Vec2 d, double eps) {
+  if (a == c || a == d || b == c || b == d) return false;
+  const int s1 = side(a, b, c, eps);
+  const int s2 = side(a, b, d, eps);
+  const int s3 = side(c, d, a, eps);
+  const int s4 = side(c, d, b, eps);
+  return s1 * s2 < 0 && s3 * s4 < 0;
+}
+
+}  // namespace
+
+std::vector<std::string> validate_cut_graph(const Part& part, const std::vector<MedialAxis>& axes,
+                                            const CutGraph& graph) {
+  std::vector<std::string> problems = graph.problems;
+  const double tol = 1e-7 * part.size;
+  // Every G-CUT-VERT on an edge has an image in every patch of the edge, at the same 3D point.
+  std::map<std::uint32_t, std::vector<CutVertId>> images;
+  for (std::size_t i = 0; i < graph.cuts.size(); ++i) images[graph.cuts[i].g.value].push_back(CutVertId(i));
+  for (std::size_t gi = 0; gi < graph.gverts.size(); ++gi) {
+    const GCutVert& g = graph.gverts[gi];
+    const auto& list = images[static_cast<std::uint32_t>(gi)];
+    if (!g.vertex && list.size() != part.edges[g.edge.index()].patches.size()) {
+      problems.push_back("the rail point at " + fmt(g.position) + " has " +
+                         std::to_string(list.size()) + " images but its edge has " +
+                         std::to_string(part.edges[g.edge.index()].patches.size()) + " patches");
+    }
+    for (CutVertId c : list) {
+      const CutVert& cv = graph.cuts[c.index()];
+      const Vec3 x = part.patches[cv.patch.index()].frame.to_3d(cv.position);
+      if (distance(x, g.position) > tol) {
+        problems.push_back("the image of the rail point at " + fmt(g.position) + " on " +
+                           part.patch_label(cv.patch) + " is " +
+                           std::to_string(distance(x, g.position)) + " away from it");
+      }
+    }
+  }
+  // Every MA-CUT-VERT lies on its MA edge, and each rail segment is as long as the radius there.
+  for (const RailSegment& s : graph.segments) {
+    const CutVert& c = graph.cuts[s.cut.index()];
+    const MaCutVert& m = graph.macuts[s.ma.index()];
+    const MedialAxis& ma = axes[m.patch.index()];
+    const MaPoint on = ma.point_on_edge(m.point.edge, m.point.t);
+    if (m.point.t < -1e-12 || m.point.t > 1.0 + 1e-12 || distance(on.position, m.point.position) > tol) {
+      problems.push_back("an MA-CUT-VERT on " + part.patch_label(m.patch) + " lies off its MA edge");
+    }
+    // Rails into the centre of a polygonised arc are longer than its radius by the sagitta.
+    if (std::fabs(distance(c.position, m.point.position) - m.point.radius) > tol + part.chord_tol) {
+      problems.push_back("a rail segment on " + part.patch_label(c.patch) +
+                         " is not as long as the radius at its MA point");
+    }
+  }
+  // No two rails cross inside a patch (sweep over x).
+  std::vector<std::vector<std::pair<Vec2, Vec2>>> rails(part.patches.size());
+  for (const RailSegment& s : graph.segments) {
+    const CutVert& c = graph.cuts[s.cut.index()];
+    rails[c.patch.index()].push_back({c.position, graph.macuts[s.ma.index()].point.position});
+  }
+  for (std::size_t p = 0; p < rails.size(); ++p) {
+    auto& r = rails[p];
+    std::sort(r.begin(), r.end(), [](const auto& x, const auto& y) {
+      return std::min(x.first.x, x.second.x) < std::min(y.first.x, y.second.x);
+    });
+    const double eps = 1e-12 * part.size * part.size;
+    std::size_t crossings = 0;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const double hi = std::max(r[i].first.x, r[i].second.x);
+      for (std::size_t j = i + 1; j < r.size() && std::min(r[j].first.x, r[j].second.x) <= hi; ++j) {
+        if (cross_inside(r[i].first, r[i].second, r[j].first, r[j].second, eps)) ++crossings;
+      }
+    }
+    if (crossings > 0) {
+      problems.push_back(std::to_string(crossings) + " pairs of rails cross inside " +
+                         part.patch_label(PatchId(p)));
+    }
+  }
+  return problems;
+}
+
+}  // namespace laytracks
