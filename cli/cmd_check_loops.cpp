@@ -61,7 +61,10 @@ int run_check_loops(const std::vector<std::string>& argv) {
       ++loops;
       max_gap = std::max(max_gap, c.closure_gap);
     }
-    ++ends[to_string(c.end)];
+    if (c.end != RailEnd::Loop) {
+      ++ends[to_string(c.start)];
+      ++ends[to_string(c.end)];
+    }
     nlohmann::ordered_json patches = nlohmann::ordered_json::array();
     for (PatchId p : c.patches) patches.push_back(part.patches[p.index()].name);
     rails.push_back({{"id", i},
@@ -87,6 +90,7 @@ int run_check_loops(const std::vector<std::string>& argv) {
   if (!args.flag("--quiet")) {
     std::printf("%zu rail chains (%zu loops) through %zu rail points, track width %.6g, %.3f s\n",
                 graph.chains.size(), loops, graph.gverts.size(), options.track_width, seconds);
+    std::printf("chain ends:\n");
     for (const auto& [end, n] : ends) std::printf("  %-15s %zu\n", end.c_str(), n);
     std::printf("largest loop closure gap %.3g (limit %.3g): %s\n", max_gap,
                 kMaxClosureGapRel * part.size, gaps_ok ? "ok" : "TOO LARGE");

@@ -10,6 +10,9 @@
 namespace laytracks::cutgraph_detail {
 namespace {
 
+/// Relative margin in Eq. (1) so that L / w = k + 1/2 rounds the same way in every pose.
+constexpr double kHalfMargin = 1e-9;
+
 struct UnionFind {
   std::vector<std::size_t> parent;
   explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
@@ -202,7 +205,9 @@ std::vector<TrackSeed> track_seeds(const Part& part, const std::vector<MedialAxi
   for (std::size_t m : master) {
     if (m == SIZE_MAX) continue;
     const CutSeg& cs = corridors.segs[m];
-    const double tracks = std::max(1.0, std::ceil(cs.length / width - 0.5));
+    // Eq. (1), ceil(L / w - 0.5): halves round down. The small margin keeps a length of
+    // exactly k + 1/2 widths from rounding differently when the part is turned.
+    const double tracks = std::max(1.0, std::ceil(cs.length / width - 0.5 - kHalfMargin));
     const auto& poly = part.patches[cs.patch.index()].polygon.loops[cs.loop];
     for (int k = 1; k < static_cast<int>(tracks); ++k) {
       // Walk the boundary to the arc length k L / n.

@@ -54,10 +54,10 @@ class RailLayer {
         for (const BoundaryPoint& bp : axes_[p].touching_points(v)) {
           const GCutId g = gcut_of(pid, bp, nullptr);
           g_.gverts[g.index()].source = true;
-          if (g_.gverts[g.index()].vertex && touches_corner(pid, bp)) {
+          if (const auto corner = corner_in(pid, g)) {
             // A branch point touching a reflex corner: the rail is one ray of the corner's fan
             // (Fig. 13), laid here; the corner's other images end there.
-            const LoopPoint at{bp.site.loop, bp.site.index, 0.0};
+            const LoopPoint at{corner->loop, corner->index, 0.0};
             const CutVertId c = cut_of(g, pid).value_or(make_cut(g, pid, at));
             MaPoint m;
             const MedialAxis& ma = axes_[p];
@@ -138,9 +138,14 @@ class RailLayer {
     return id;
   }
 
-  /// True when a touching point is a corner of the patch (a reflex corner, for an MA vertex).
-  static bool touches_corner(PatchId, const BoundaryPoint& bp) {
-    return bp.site.kind == BoundarySite::Kind::Corner;
+  /// The corner of patch p where G-CUT-VERT g sits, if g is at a B-Rep vertex.
+  std::optional<cutgraph_detail::CornerRef> corner_in(PatchId p, GCutId g) const {
+    const GCutVert& gv = g_.gverts[g.index()];
+    if (!gv.vertex) return std::nullopt;
+    for (const auto& c : index_.corners_of(*gv.vertex)) {
+      if (c.patch == p) return c;
+    }
+    return std::nullopt;
   }
 
   /// The G-CUT-VERT at a boundary point of patch p (a segment point or a corner).
@@ -269,9 +274,9 @@ void extract_chains(const Part& part, const BoundaryIndex& index, const RailLaye
       return g.macuts[node & ~kMaFlag].branch ? RailEnd::BranchPoint : RailEnd::RoundCorner;
     }
     const std::size_t degree = at[node].size();
-    if (degree >= 3) return RailEnd::Junction;
     const GCutVert& gv = g.gverts[node];
     if (gv.vertex) {
+      // Rails end at a corner, however many meet there (the fan of a concave vertex).
       bool free = true;
       for (const auto& c : index.corners_of(*gv.vertex)) {
         const int turn = corner_turn(part, c.patch, c.loop, c.index);
@@ -284,10 +289,18 @@ void extract_chains(const Part& part, const BoundaryIndex& index, const RailLaye
         }
       }
       // A smooth or straight corner is an ordinary boundary point.
+      if (degree >= 3) return RailEnd::Junction;
       return degree == 1 && free ? RailEnd::FreeEdge : RailEnd::Lost;
     }
+    if (degree >= 3) return RailEnd::Junction;
     if (degree == 1 && part.edges[gv.edge.index()].patches.size() == 1) return RailEnd::FreeEdge;
     return RailEnd::Lost;
+  };
+  // Where chains stop: MA nodes, corners, and points where other than two rails meet.
+  const auto stops = [&](std::uint32_t node) {
+    if ((node & kMaFlag) || at[node].size() != 2) return true;
+    const RailEnd e = end_kind(node);
+    return e == RailEnd::ConcaveVertex || e == RailEnd::ConvexVertex;
   };
   std::vector<bool> used(links.size(), false);
   const auto walk = [&](std::uint32_t start, std::size_t first) {
@@ -303,11 +316,11 @@ void extract_chains(const Part& part, const BoundaryIndex& index, const RailLaye
       chain.closure_gap = std::max(chain.closure_gap, l.gap);
       if (!(node & kMaFlag)) chain.through.push_back(GCutId(node));
       node = l.from == node ? l.to : l.from;
-      if (node == start && at[node].size() == 2) {
+      if (node == start && !stops(node)) {
         chain.start = chain.end = RailEnd::Loop;
         break;
       }
-      if ((node & kMaFlag) || at[node].size() != 2) {
+      if (stops(node)) {
         if (!(node & kMaFlag)) chain.through.push_back(GCutId(node));
         chain.end = end_kind(node);
         break;
@@ -328,7 +341,7 @@ void extract_chains(const Part& part, const BoundaryIndex& index, const RailLaye
     g.chains.push_back(std::move(chain));
   };
   for (const auto& [node, list] : at) {
-    if ((node & kMaFlag) || list.size() != 2) {
+    if (stops(node)) {
       for (std::size_t li : list) {
         if (!used[li]) walk(node, li);
       }

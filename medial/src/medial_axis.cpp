@@ -200,8 +200,6 @@ std::optional<MaPoint> MedialAxis::project(const BoundaryPoint& bp) const {
   const Vec2 p = lerp(s0, s1, bp.s);
   const Vec2 n = inward_normal(polygon_, bp.site);
   std::optional<MaPoint> best;
-  double best_gap = INFINITY;
-  std::optional<MaPoint> nearest;  // fallback: the covered point nearest to p along the segment
   for (MaEdgeId id : cells_[cell_index(bp.site)]) {
     const MaEdge& e = edges_[id.index()];
     const BoundarySite& other = e.left == bp.site ? e.right : e.left;
@@ -209,17 +207,22 @@ std::optional<MaPoint> MedialAxis::project(const BoundaryPoint& bp) const {
     if (std::isfinite(h) && h >= 0.0) {
       if (auto m = locate(id, p + h * n); m && (!best || m->radius < best->radius)) best = m;
     }
-    for (const MaVertexId end : {e.a, e.b}) {
-      double s = 0.0;
-      site_foot(polygon_, bp.site, vertices_[end.index()].position, &s);
-      const double gap = std::fabs(s - bp.s);
-      if (gap < best_gap) {
-        best_gap = gap;
-        nearest = point_on_edge(id, end == e.a ? 0.0 : 1.0);
-      }
+  }
+  if (best) return best;
+  // The normal meets no edge of this segment's cell: the point is on a polygonised arc (or
+  // beside one) whose branches were pruned. Its maximal disk is then, up to the chord
+  // tolerance, the disk of the vertex whose circle passes closest to it: the arc's centre.
+  double best_miss = INFINITY;
+  for (std::size_t v = 0; v < vertices_.size(); ++v) {
+    if (!(vertices_[v].radius > 0.0) || incident_[v].empty()) continue;
+    const double miss = std::fabs(distance(p, vertices_[v].position) - vertices_[v].radius);
+    if (miss < best_miss) {
+      best_miss = miss;
+      const MaEdgeId id = incident_[v].front();
+      best = point_on_edge(id, edges_[id.index()].a == MaVertexId(v) ? 0.0 : 1.0);
     }
   }
-  return best ? best : nearest;
+  return best;
 }
 
 std::optional<MaPoint> MedialAxis::project_corner(std::uint32_t loop, std::uint32_t vertex,

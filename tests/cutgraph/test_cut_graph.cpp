@@ -1,0 +1,167 @@
+// Rails across patches (Algorithm II), corridors and track rails, on the test parts.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <map>
+
+#include "laytracks/brep/build.hpp"
+#include "laytracks/cutgraph/cut_graph.hpp"
+#include "laytracks/io/brep_json.hpp"
+#include "laytracks/medial/part_medial.hpp"
+#include "test_support.hpp"
+
+using namespace laytracks;
+using namespace laytracks::test;
+
+namespace {
+
+struct Laid {
+  Part part;
+  std::vector<MedialAxis> axes;
+  CutGraph graph;
+};
+
+Laid lay(const RawPart& raw, double width) {
+  Laid l{build_part(raw), {}, {}};
+  l.axes = compute_medial_axes(l.part);
+  CutGraphOptions o;
+  o.track_width = width;
+  l.graph = build_cut_graph(l.part, l.axes, o);
+  return l;
+}
+
+std::map<RailEnd, std::size_t> ends(const CutGraph& g) {
+  std::map<RailEnd, std::size_t> m;
+  for (const RailChain& c : g.chains) {
+    ++m[c.start];
+    ++m[c.end];
+  }
+  return m;
+}
+
+/// A closed hexagonal prism: two hexagons and six rectangles.
+RawPart hex_prism() {
+  RawPart raw;
+  raw.source = "hex_prism";
+  for (double z : {0.0, 8.0}) {
+    for (int i = 0; i < 6; ++i) {
+      raw.vertices.push_back({5.0 * std::cos(M_PI * i / 3), 5.0 * std::sin(M_PI * i / 3), z});
+    }
+  }
+  raw.patches.push_back({std::string("bottom"), {{5, 4, 3, 2, 1, 0}}});
+  raw.patches.push_back({std::string("top"), {{6, 7, 8, 9, 10, 11}}});
+  for (std::int64_t i = 0; i < 6; ++i) {
+    const std::int64_t j = (i + 1) % 6;
+    raw.patches.push_back({"side" + std::to_string(i), {{i, j, j + 6, i + 6}}});
+  }
+  return raw;
+}
+
+}  // namespace
+
+TEST_CASE("closed cube: rails through the edge midpoints, loops round every corner",
+          "[cutgraph]") {
+  const Laid l = lay(read_brep_json(cases_dir() + "/closed_cube.json"), 1.0);
+  CHECK(validate_cut_graph(l.part, l.axes, l.graph).empty());
+  // The 12 edge midpoints are the sources; each source chain joins two face centres.
+  std::size_t sources = 0;
+  for (const GCutVert& g : l.graph.gverts) {
+    if (!g.source) continue;
+    ++sources;
+    CHECK(std::fabs(g.t - 0.5) < 1e-12);
+  }
+  CHECK(sources == 12);
+  std::size_t loops = 0;
+  for (const RailChain& c : l.graph.chains) {
+    if (c.end == RailEnd::Loop) {
+      ++loops;
+      CHECK(c.patches.size() == 3);  // round one corner, through three faces
+      CHECK(c.closure_gap <= 1e-9 * l.part.size);
+    } else {
+      CHECK(c.start == RailEnd::BranchPoint);
+      CHECK(c.end == RailEnd::BranchPoint);
+      CHECK(c.source);
+    }
+  }
+  // Corridors round each corner are 5 long: 5 tracks, so 4 loops per corner.
+  CHECK(loops == 8 * 4);
+}
+
+TEST_CASE("a closed hexagonal prism closes its loops too", "[cutgraph]") {
+  const Laid l = lay(hex_prism(), 0.8);
+  CHECK(validate_cut_graph(l.part, l.axes, l.graph).empty());
+  const auto e = ends(l.graph);
+  CHECK(e.count(RailEnd::FreeEdge) == 0);
+  CHECK(e.count(RailEnd::Lost) == 0);
+  CHECK(e.count(RailEnd::Loop) > 0);
+  for (const RailChain& c : l.graph.chains) {
+    if (c.end == RailEnd::Loop) CHECK(c.closure_gap <= 1e-9 * l.part.size);
+  }
+}
+
+TEST_CASE("open box: rails end on the free top edges", "[cutgraph]") {
+  const Laid l = lay(read_brep_json(cases_dir() + "/open_box.json"), 1.5);
+  CHECK(validate_cut_graph(l.part, l.axes, l.graph).empty());
+  const auto e = ends(l.graph);
+  CHECK(e.at(RailEnd::FreeEdge) > 0);
+  CHECK(e.count(RailEnd::Lost) == 0);
+  for (const RailChain& c : l.graph.chains) {
+    if (c.end != RailEnd::FreeEdge) continue;
+    const GCutVert& g = l.graph.gverts[c.through.back().index()];
+    CHECK(std::fabs(g.position.z - 12.0) < 1e-9);  // the free edges are the top rim
+  }
+}
+
+TEST_CASE("t-junction: a rail reaching the rib's foot continues into both other patches",
+          "[cutgraph]") {
+  const Laid l = lay(read_brep_json(cases_dir() + "/t_junction.json"), 1.0);
+  CHECK(validate_cut_graph(l.part, l.axes, l.graph).empty());
+  // Every rail point on the foot (x = 10, z = 0) has an image in all three patches.
+  std::size_t on_foot = 0;
+  for (std::size_t i = 0; i < l.graph.gverts.size(); ++i) {
+    const GCutVert& g = l.graph.gverts[i];
+    if (g.vertex || l.part.edges[g.edge.index()].patches.size() != 3) continue;
+    ++on_foot;
+    std::size_t images = 0;
+    for (const CutVert& c : l.graph.cuts) images += c.g.index() == i ? 1u : 0u;
+    CHECK(images == 3);
+  }
+  CHECK(on_foot > 0);
+  CHECK(ends(l.graph).at(RailEnd::Junction) > 0);
+}
+
+TEST_CASE("L-shape: a rail runs from the branch point into the concave corner", "[cutgraph]") {
+  const Laid l = lay(read_brep_json(cases_dir() + "/l_shape.json"), 1.0);
+  CHECK(validate_cut_graph(l.part, l.axes, l.graph).empty());
+  CHECK(ends(l.graph).at(RailEnd::ConcaveVertex) >= 1);
+}
+
+TEST_CASE("the validator passes on every part, and no rail is lost", "[cutgraph][cases]") {
+  for (const std::string& file : all_case_files()) {
+    CAPTURE(file);
+    const RawPart raw = read_brep_json(file);
+    const Part part = build_part(raw);
+    const double width = part.mesh.size.value_or(part.bbox.diagonal() / 40.0);
+    const Laid l = lay(raw, width);
+    const auto problems = validate_cut_graph(l.part, l.axes, l.graph);
+    INFO((problems.empty() ? std::string() : problems.front()));
+    CHECK(problems.empty());
+    CHECK(ends(l.graph).count(RailEnd::Lost) == 0);
+  }
+}
+
+TEST_CASE("rotated and mirrored parts give the same rails", "[cutgraph][metamorphic]") {
+  for (const char* name : {"closed_cube", "open_box", "t_junction", "l_shape"}) {
+    CAPTURE(name);
+    const RawPart raw = read_brep_json(cases_dir() + "/" + name + ".json");
+    const Laid base = lay(raw, 1.0);
+    for (const Transform& t : {rotation({1, 2, 3}, 0.7), mirror_x(),
+                               compose(scaling(1e3), rotation({0, 1, 1}, 2.0))}) {
+      const double k = norm(t.apply({1, 0, 0}) - t.apply({0, 0, 0}));
+      const Laid moved = lay(transformed(raw, t), k);
+      CHECK(moved.graph.gverts.size() == base.graph.gverts.size());
+      CHECK(moved.graph.chains.size() == base.graph.chains.size());
+      CHECK(ends(moved.graph) == ends(base.graph));
+    }
+  }
+}
