@@ -19,6 +19,8 @@ enum Status : int {
 int run_medial(const std::vector<std::string>& args);
 extern const char* const kMedialHelp;
 int run_check_loops(const std::vector<std::string>& args);
+int run_draw(const std::vector<std::string>& args);
+extern const char* const kDrawHelp;
 extern const char* const kCheckLoopsHelp;
 
 }  // namespace laytracks::cli

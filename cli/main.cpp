@@ -16,10 +16,10 @@ const char* const kHelp =
     "commands:\n"
     "  medial PART.json       the medial axis of every patch, as JSON and as a picture\n"
     "  check-loops PART.json  lay the rails and report how every rail chain ends\n"
+    "  draw PART.json         picture of a stage: medial, corridors or tracks\n"
     "  help [COMMAND]         this text, or a command's own\n"
     "\n"
-    "The mesh, batch and draw commands come with the track and mesh stages; they are not in\n"
-    "this build yet.\n"
+    "The mesh and batch commands come with the mesh stage; they are not in this build yet.\n"
     "\n"
     "exit status: 0 done; 1 the part was refused or could not be read (the message says what\n"
     "and where); 2 wrong command line; 3 internal error (a stage failed its own check: please\n"
@@ -33,6 +33,8 @@ int dispatch(const std::vector<std::string>& args) {
       std::cout << kMedialHelp;
     } else if (args.size() > 1 && args[1] == "check-loops") {
       std::cout << kCheckLoopsHelp;
+    } else if (args.size() > 1 && args[1] == "draw") {
+      std::cout << kDrawHelp;
     } else {
       std::cout << kHelp;
     }
@@ -48,6 +50,7 @@ int dispatch(const std::vector<std::string>& args) {
   }
   if (args[0] == "medial") return run_medial(rest);
   if (args[0] == "check-loops") return run_check_loops(rest);
+  if (args[0] == "draw") return run_draw(rest);
   throw UsageError("unknown command \"" + args[0] + "\" (see laytracks --help)");
 }
 

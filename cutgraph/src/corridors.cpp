@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <tuple>
 
 #include "boundary_index.hpp"
 
@@ -96,13 +97,13 @@ class Finder {
         const double n = static_cast<double>(poly.size());
         first_seg_[{p, l}] = out_.segs.size();
         if (b.empty()) {  // a loop without rails or corners: one CUT-SEG all round
-          out_.segs.push_back({PatchId(p), l, 0.0, n, length_between(poly, 0.0, n), 0});
+          out_.segs.push_back({PatchId(p), l, 0.0, n, length_between(poly, 0.0, n), 0, {}, {}});
           continue;
         }
         for (std::size_t k = 0; k < b.size(); ++k) {
           const double u0 = b[k];
           const double u1 = k + 1 < b.size() ? b[k + 1] : b[0] + n;
-          out_.segs.push_back({PatchId(p), l, u0, u1, length_between(poly, u0, u1), 0});
+          out_.segs.push_back({PatchId(p), l, u0, u1, length_between(poly, u0, u1), 0, {}, {}});
         }
         breaks_[{p, l}] = b;
       }
@@ -192,6 +193,35 @@ Corridors find_corridors(const Part& part, const std::vector<MedialAxis>& axes,
   return Finder(part, axes, graph).run();
 }
 
+std::vector<CorridorPiece> corridor_pieces_impl(const Part& part,
+                                                const std::vector<MedialAxis>& axes,
+                                                const CutGraph& graph) {
+  Corridors c = find_corridors(part, axes, graph);
+  // Where the rail at each break point meets the axis: from the rail segments, else the corner.
+  std::map<std::tuple<std::uint32_t, std::uint32_t, long long>, Vec2> ma_at;
+  const auto key = [&](PatchId p, std::uint32_t loop, double u) {
+    const double n = static_cast<double>(part.patches[p.index()].polygon.loops[loop].size());
+    u = std::fmod(u, n);
+    return std::make_tuple(p.value, loop, std::llround(u * 1e9));
+  };
+  for (const RailSegment& s : graph.segments) {
+    const CutVert& cv = graph.cuts[s.cut.index()];
+    ma_at[key(cv.patch, cv.at.loop, cv.at.u())] = graph.macuts[s.ma.index()].point.position;
+  }
+  for (CutSeg& cs : c.segs) {
+    const auto& poly = part.patches[cs.patch.index()].polygon.loops[cs.loop];
+    std::uint32_t seg;
+    double s;
+    const auto end_point = [&](double u) {
+      const auto it = ma_at.find(key(cs.patch, cs.loop, u));
+      return it != ma_at.end() ? it->second : point_at(poly, u, &seg, &s);
+    };
+    cs.ma0 = end_point(cs.u0);
+    cs.ma1 = end_point(cs.u1);
+  }
+  return c.segs;
+}
+
 std::vector<TrackSeed> track_seeds(const Part& part, const std::vector<MedialAxis>& axes,
                                    const CutGraph& graph, double width) {
   const Corridors corridors = find_corridors(part, axes, graph);
@@ -240,3 +270,12 @@ std::vector<TrackSeed> track_seeds(const Part& part, const std::vector<MedialAxi
 }
 
 }  // namespace laytracks::cutgraph_detail
+
+namespace laytracks {
+
+std::vector<CorridorPiece> corridor_pieces(const Part& part, const std::vector<MedialAxis>& axes,
+                                           const CutGraph& graph) {
+  return cutgraph_detail::corridor_pieces_impl(part, axes, graph);
+}
+
+}  // namespace laytracks

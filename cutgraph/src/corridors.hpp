@@ -7,16 +7,7 @@
 
 namespace laytracks::cutgraph_detail {
 
-/// A piece of a loop between two consecutive rails or corners: u from u0 to u1 (u = segment +
-/// s; u1 may exceed the loop's segment count when the piece wraps around its start).
-struct CutSeg {
-  PatchId patch;
-  std::uint32_t loop = 0;
-  double u0 = 0.0;
-  double u1 = 0.0;
-  double length = 0.0;  ///< along the boundary, in the part's units
-  std::size_t corridor = 0;
-};
+using CutSeg = CorridorPiece;
 
 struct Corridors {
   std::vector<CutSeg> segs;

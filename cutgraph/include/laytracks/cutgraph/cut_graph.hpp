@@ -108,6 +108,26 @@ struct CutGraphOptions {
 CutGraph build_cut_graph(const Part& part, const std::vector<MedialAxis>& axes,
                          const CutGraphOptions& options = {});
 
+/// A CUT-SEG: the piece of a loop between two consecutive rails or corners, u from u0 to u1
+/// (u = segment + s; u1 may pass the loop's segment count when the piece wraps round its
+/// start), and the corridor it belongs to. `ma0` and `ma1` are where the rails at its two ends
+/// meet the medial axis (the corner itself at a corner).
+struct CorridorPiece {
+  PatchId patch;
+  std::uint32_t loop = 0;
+  double u0 = 0.0;
+  double u1 = 0.0;
+  double length = 0.0;
+  std::size_t corridor = 0;
+  Vec2 ma0;
+  Vec2 ma1;
+};
+
+/// The CUT-SEGs of every loop and their corridors: two CUT-SEGs are in one corridor when one
+/// maps onto the other across the medial axis, or when they share a B-Rep edge.
+std::vector<CorridorPiece> corridor_pieces(const Part& part, const std::vector<MedialAxis>& axes,
+                                           const CutGraph& graph);
+
 /// The validator: no two rails cross inside a patch; every CUT-VERT on a shared edge has an
 /// image in every patch of that edge at the same 3D point; every MA-CUT-VERT lies on its axis.
 /// Returns the problems found, each a sentence; empty when valid.

@@ -1,0 +1,96 @@
+#include "laytracks/io/cutgraph_output.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "laytracks/io/svg.hpp"
+
+namespace laytracks {
+namespace {
+
+/// A light colour for corridor i: hues spread by the golden angle.
+std::string corridor_colour(std::size_t i) {
+  const double h = std::fmod(static_cast<double>(i) * 137.508, 360.0);
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "hsl(%.0f,70%%,72%%)", h);
+  return buf;
+}
+
+/// Points of a loop from parameter u0 to u1 (u = segment + s, wrapping).
+std::vector<Vec2> loop_piece(const std::vector<Vec2>& loop, double u0, double u1) {
+  const std::size_t n = loop.size();
+  const auto at = [&](double u) {
+    double w = std::fmod(u, static_cast<double>(n));
+    if (w < 0) w += static_cast<double>(n);
+    const std::size_t i = std::min(static_cast<std::size_t>(w), n - 1);
+    return lerp(loop[i], loop[(i + 1) % n], w - static_cast<double>(i));
+  };
+  std::vector<Vec2> pts{at(u0)};
+  for (double k = std::floor(u0) + 1.0; k < u1; k += 1.0) pts.push_back(at(k));
+  pts.push_back(at(u1));
+  return pts;
+}
+
+}  // namespace
+
+void write_rails_svg(std::ostream& out, const Part& part, const std::vector<MedialAxis>& axes,
+                     const CutGraph& graph, const std::string& title) {
+  const std::size_t n = part.patches.size();
+  const std::size_t cols = std::max<std::size_t>(
+      1, std::min<std::size_t>(n, static_cast<std::size_t>(std::ceil(std::sqrt(double(n))))));
+  const std::size_t rows = (n + cols - 1) / cols;
+  const double cell = n == 1 ? 640.0 : 360.0;
+  const double head = 24.0;
+  SvgDocument svg(cell * static_cast<double>(cols), (head + cell) * static_cast<double>(rows) + 30.0);
+  std::vector<Panel> panels;
+  for (std::size_t p = 0; p < n; ++p) {
+    Box2 box;
+    for (const auto& loop : part.patches[p].polygon.loops) {
+      for (Vec2 q : loop) box.add(q);
+    }
+    const double x0 = cell * static_cast<double>(p % cols);
+    const double y0 = (cell + head) * static_cast<double>(p / cols);
+    panels.emplace_back(box, x0, y0 + head, cell, cell, 16.0);
+    svg.text({x0 + 8, y0 + 18}, part.patches[p].name, 14.0);
+    for (const auto& loop : part.patches[p].polygon.loops) {
+      std::vector<Vec2> pts;
+      for (Vec2 q : loop) pts.push_back(panels[p].map(q));
+      svg.polyline(pts, "none", 0.0, true, "#f4f1ea");
+    }
+  }
+  for (const CorridorPiece& c : corridor_pieces(part, axes, graph)) {
+    const auto& loop = part.patches[c.patch.index()].polygon.loops[c.loop];
+    std::vector<Vec2> pts = loop_piece(loop, c.u0, c.u1);
+    pts.push_back(c.ma1);
+    pts.push_back(c.ma0);
+    for (Vec2& q : pts) q = panels[c.patch.index()].map(q);
+    svg.polyline(pts, "none", 0.0, true, corridor_colour(c.corridor));
+  }
+  for (std::size_t p = 0; p < n; ++p) {
+    const MedialAxis& ma = axes[p];
+    const double chord = 2.0 / panels[p].scale();
+    for (std::size_t e = 0; e < ma.edges().size(); ++e) {
+      std::vector<Vec2> pts;
+      for (Vec2 q : ma.sample_edge(MaEdgeId(e), chord)) pts.push_back(panels[p].map(q));
+      svg.polyline(pts, "#888", 1.0);
+    }
+    for (const auto& loop : part.patches[p].polygon.loops) {
+      std::vector<Vec2> pts;
+      for (Vec2 q : loop) pts.push_back(panels[p].map(q));
+      svg.polyline(pts, "#222", 1.5, true);
+    }
+  }
+  for (const RailSegment& s : graph.segments) {
+    const CutVert& c = graph.cuts[s.cut.index()];
+    const Panel& panel = panels[c.patch.index()];
+    const bool source = graph.macuts[s.ma.index()].branch;  // source rails meet branch points
+    svg.polyline({panel.map(c.position), panel.map(graph.macuts[s.ma.index()].point.position)},
+                 source ? "#d62728" : "#1f5fbf", source ? 1.4 : 0.8);
+  }
+  const double ly = (cell + head) * static_cast<double>(rows) + 20.0;
+  svg.text({10.0, ly}, title + ": source rails red, track rails blue, medial axis grey", 12.0);
+  out << svg.str();
+}
+
+}  // namespace laytracks
