@@ -150,6 +150,31 @@ TEST_CASE("command-line mistakes exit with status 2 and say what is wrong", "[cl
   CHECK_THAT(missing.err, Catch::Contains("cannot read /nonexistent/part.json"));
 }
 
+TEST_CASE("check-loops reports the cube's loops as JSON, and draw writes pictures", "[cli]") {
+  const fs::path d = fresh_dir("check-loops");
+  const std::string cube = q(laytracks::test::cases_dir() + "/closed_cube.json");
+  const Run r = run("check-loops " + cube + " --json " + q(d / "loops.json"));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("32 loops"));
+  const auto doc = nlohmann::json::parse(slurp(d / "loops.json"));
+  CHECK(doc["ok"] == true);
+  CHECK(doc["loops"] == 32);
+  CHECK(doc["max_closure_gap"].get<double>() <= 1e-9 * 17.32);
+  std::size_t loops = 0;
+  for (const auto& rail : doc["rails"]) loops += rail["end"] == "loop" ? 1u : 0u;
+  CHECK(loops == 32);
+  for (const char* stage : {"medial", "corridors", "tracks"}) {
+    const fs::path svg = d / (std::string(stage) + ".svg");
+    const Run draw = run("draw " + cube + " --stage " + stage + " -o " + q(svg));
+    CHECK(draw.status == 0);
+    CHECK(slurp(svg).find("</svg>") != std::string::npos);
+  }
+  const Run bad = run("draw " + cube + " --stage quads -o " + q(d / "x.svg"));
+  CHECK(bad.status == 2);
+  CHECK_FALSE(fs::exists(d / "x.svg"));
+}
+
 TEST_CASE("help describes the commands and exits 0", "[cli]") {
   const Run help = run("--help");
   CHECK(help.status == 0);
