@@ -83,6 +83,10 @@ int run_check_loops(const std::vector<std::string>& argv) {
   doc["ok"] = ok;
   doc["track_width"] = options.track_width;
   doc["rail_points"] = graph.gverts.size();
+  doc["corridors"] = graph.corridor_count;
+  doc["tracks"] = graph.track_count;
+  doc["deleted_rails"] = graph.deleted.size();
+  doc["narrow_corridors_kept"] = graph.narrow_kept;
   doc["problems"] = problems;
   if (const auto path = args.value("--json")) {
     write_file_atomically(*path, [&](std::ostream& o) { o << doc.dump(1) << '\n'; });
@@ -90,6 +94,9 @@ int run_check_loops(const std::vector<std::string>& argv) {
   if (!args.flag("--quiet")) {
     std::printf("%zu rail chains (%zu loops) through %zu rail points, track width %.6g, %.3f s\n",
                 graph.chains.size(), loops, graph.gverts.size(), options.track_width, seconds);
+    std::printf("%zu corridors, %zu tracks; %zu source rails deleted for narrow corridors, %zu "
+                "narrow corridors kept (small features)\n",
+                graph.corridor_count, graph.track_count, graph.deleted.size(), graph.narrow_kept);
     std::printf("chain ends:\n");
     for (const auto& [end, n] : ends) std::printf("  %-15s %zu\n", end.c_str(), n);
     std::printf("largest loop closure gap %.3g (limit %.3g): %s\n", max_gap,

@@ -19,6 +19,11 @@ struct Corridors {
 Corridors find_corridors(const Part& part, const std::vector<MedialAxis>& axes,
                          const CutGraph& graph);
 
+/// The CUT-SEGs with their corridors and the MA points at their ends (corridor_pieces()).
+std::vector<CorridorPiece> corridor_pieces_impl(const Part& part,
+                                                const std::vector<MedialAxis>& axes,
+                                                const CutGraph& graph);
+
 /// Where to start a track rail.
 struct TrackSeed {
   PatchId patch;

@@ -136,6 +136,48 @@ TEST_CASE("L-shape: a rail runs from the branch point into the concave corner", 
   CHECK(ends(l.graph).at(RailEnd::ConcaveVertex) >= 1);
 }
 
+TEST_CASE("two close branch points: the narrow corridor between them is removed", "[cutgraph][narrow]") {
+  RawPart raw;
+  raw.vertices = {{0, 0, 0}, {4.2, 0, 0}, {4.2, 4, 0}, {0, 4, 0}};
+  raw.patches.push_back({std::string("plate"), {{0, 1, 2, 3}}});
+  const Part part = build_part(raw);
+  const auto axes = compute_medial_axes(part);
+  CutGraphOptions keep;
+  keep.track_width = 1.0;
+  keep.narrow_fraction = 0.0;
+  keep.lay_tracks = false;
+  const CutGraph before = build_cut_graph(part, axes, keep);
+  CutGraphOptions remove = keep;
+  remove.narrow_fraction = 0.5;
+  const CutGraph after = build_cut_graph(part, axes, remove);
+  CHECK(after.corridor_count == before.corridor_count - 1);
+  // The rail through one branch point (top and bottom touching points) is gone: case 4.
+  REQUIRE(after.deleted.size() == 2);
+  for (const DeletedRail& d : after.deleted) CHECK(d.through_branch_point);
+  CHECK(validate_cut_graph(part, axes, after).empty());
+}
+
+TEST_CASE("after removal, every corridor narrower than the minimum is a kept small feature",
+          "[cutgraph][narrow][cases]") {
+  for (const std::string& file : all_case_files()) {
+    CAPTURE(file);
+    const Part part = build_part(read_brep_json(file));
+    const auto axes = compute_medial_axes(part);
+    CutGraphOptions o;
+    o.track_width = part.mesh.size.value_or(part.bbox.diagonal() / 40.0);
+    o.lay_tracks = false;
+    const CutGraph g = build_cut_graph(part, axes, o);
+    std::map<std::size_t, double> width;
+    for (const CorridorPiece& c : corridor_pieces(part, axes, g)) {
+      width[c.corridor] = std::max(width[c.corridor], c.length);
+    }
+    std::size_t narrow = 0;
+    for (const auto& kv : width) narrow += kv.second < o.narrow_fraction * o.track_width ? 1u : 0u;
+    CHECK(narrow == g.narrow_kept);
+    CHECK(validate_cut_graph(part, axes, g).empty());
+  }
+}
+
 TEST_CASE("the validator passes on every part, and no rail is lost", "[cutgraph][cases]") {
   for (const std::string& file : all_case_files()) {
     CAPTURE(file);

@@ -84,6 +84,15 @@ struct RailChain {
   bool source = false;       ///< starts at a branch point's touching point
 };
 
+/// A source rail deleted to remove a narrow corridor (paper 4.2.3): where its source point was,
+/// and the corridor that was too narrow. The medial axis is never changed.
+struct DeletedRail {
+  Vec3 at;
+  PatchId patch;
+  double corridor_width = 0.0;
+  bool through_branch_point = false;  ///< Table I cases 3 and 4: MA-CUT-VERTs merged
+};
+
 struct CutGraph {
   std::vector<GCutVert> gverts;
   std::vector<CutVert> cuts;
@@ -94,17 +103,29 @@ struct CutGraph {
   /// identified with (a loop closing, or two rails meeting).
   double max_landing_gap = 0.0;
   std::vector<std::string> problems;  ///< rails that ended where the geometry does not allow
+  std::vector<DeletedRail> deleted;   ///< rails removed with narrow corridors
+  /// Narrow corridors left alone: they pass a convex vertex (a small feature that needs its
+  /// fine tracks) or their only rail ends at a concave vertex.
+  std::size_t narrow_kept = 0;
+  std::size_t corridor_count = 0;  ///< corridors between the source rails (after deletions)
+  std::size_t track_count = 0;     ///< tracks, once the track rails are laid
 };
 
 struct CutGraphOptions {
   /// Track width for uniform mode. Rails are laid in every corridor at this spacing (Eq. 1);
   /// 0 lays only the source rails.
   double track_width = 0.0;
+  /// A corridor whose longest CUT-SEG is shorter than this x the track width is narrow, and its
+  /// rails are deleted until it is not (0 keeps every rail).
+  double narrow_fraction = 0.5;
+  /// Lay the track rails (false: stop after removing narrow corridors, to look at corridors).
+  bool lay_tracks = true;
 };
 
 /// Lays the rails: from the touching points of every MA branch point (Source G-CUT-VERTs),
 /// breadth first across patches through shared edges (Algorithm II); then, if a track width
-/// is given, the track rails of every corridor. `axes[p]` is the medial axis of patch p.
+/// is given, removes narrow corridors by deleting source rails and lays the track rails of
+/// every corridor. `axes[p]` is the medial axis of patch p.
 CutGraph build_cut_graph(const Part& part, const std::vector<MedialAxis>& axes,
                          const CutGraphOptions& options = {});
 

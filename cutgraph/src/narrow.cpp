@@ -1,0 +1,184 @@
+// Removing narrow corridors by deleting rails (paper 4.2.1-4.2.3); the medial axis is never
+// edited. The rules chosen are in docs/cutgraph.md.
+#include "narrow.hpp"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <set>
+#include <tuple>
+
+#include "corridors.hpp"
+#include "rail_layer.hpp"
+
+namespace laytracks::cutgraph_detail {
+namespace {
+
+struct UnionFind {
+  std::vector<std::size_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  std::size_t find(std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(std::size_t a, std::size_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+/// The state of one round: the source rails laid with some deleted, and their corridors.
+struct Round {
+  CutGraph graph;
+  std::vector<CorridorPiece> pieces;
+  std::vector<RailLayer::Link> links;
+};
+
+Round lay_round(const Part& part, const std::vector<MedialAxis>& axes,
+                const std::vector<Vec3>& suppressed) {
+  Round r;
+  RailLayer layer(part, axes, r.graph);
+  layer.suppress(suppressed);
+  layer.lay_sources();
+  r.links = layer.links();
+  r.pieces = corridor_pieces_impl(part, axes, r.graph);
+  return r;
+}
+
+constexpr std::uint32_t kMaFlag = 1u << 31;
+
+/// True when G-CUT-VERT g sits at a corner that is not smooth (rails end there).
+bool at_corner(const Part& part, const BoundaryIndex& index, const GCutVert& g) {
+  if (!g.vertex) return false;
+  for (const auto& c : index.corners_of(*g.vertex)) {
+    if (corner_turn(part, c.patch, c.loop, c.index) != 0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void remove_narrow_corridors(const Part& part, const std::vector<MedialAxis>& axes,
+                             double min_width, std::vector<Vec3>& suppressed,
+                             std::vector<DeletedRail>& deleted, std::size_t& kept) {
+  const BoundaryIndex index(part);
+  // Each round deletes one rail (one connected set of source rails), then lays again: the
+  // narrowest corridors first, so that a group of adjacent narrow corridors merges until the
+  // width holds. Bounded by the number of source points.
+  for (std::size_t round = 0; round < 100000; ++round) {
+    const Round r = lay_round(part, axes, suppressed);
+    const CutGraph& g = r.graph;
+    // Rails joined through boundary points (not through MA nodes or corners) form one set.
+    UnionFind uf(g.gverts.size());
+    for (const auto& l : r.links) {
+      if ((l.from & kMaFlag) || (l.to & kMaFlag)) continue;
+      if (at_corner(part, index, g.gverts[l.from]) || at_corner(part, index, g.gverts[l.to])) continue;
+      uf.unite(l.from, l.to);
+    }
+    // Break points of the CUT-SEGs: the G-CUT-VERT there, if any.
+    std::map<std::tuple<std::uint32_t, std::uint32_t, long long>, GCutId> cut_at;
+    const auto key = [&](PatchId p, std::uint32_t loop, double u) {
+      const double n = static_cast<double>(part.patches[p.index()].polygon.loops[loop].size());
+      return std::make_tuple(p.value, loop, std::llround(std::fmod(u, n) * 1e9));
+    };
+    for (const CutVert& c : g.cuts) cut_at[key(c.patch, c.at.loop, c.at.u())] = c.g;
+    // Corridors: width (longest CUT-SEG) and bounding break points.
+    std::map<std::size_t, double> width;
+    std::map<std::size_t, std::set<std::uint32_t>> bounds;
+    std::set<std::size_t> small_feature;
+    for (const CorridorPiece& c : r.pieces) {
+      width[c.corridor] = std::max(width[c.corridor], c.length);
+      for (double u : {c.u0, c.u1}) {
+        const auto it = cut_at.find(key(c.patch, c.loop, u));
+        if (it == cut_at.end()) {
+          // A corner: a convex one makes the corridor a small feature, which stays.
+          const auto n = part.patches[c.patch.index()].polygon.loops[c.loop].size();
+          const auto corner = static_cast<std::uint32_t>(std::llround(u) % static_cast<long long>(n));
+          if (corner_turn(part, c.patch, c.loop, corner) > 0) small_feature.insert(c.corridor);
+          continue;
+        }
+        bounds[c.corridor].insert(it->second.value);
+      }
+    }
+    // Source points per rail set, and how many source rails end at each concave corner.
+    std::map<std::size_t, std::vector<std::uint32_t>> sources_of;
+    std::map<std::uint32_t, std::size_t> rays_at_vertex;
+    for (std::uint32_t i = 0; i < g.gverts.size(); ++i) {
+      if (!g.gverts[i].source) continue;
+      sources_of[uf.find(i)].push_back(i);
+      if (g.gverts[i].vertex) ++rays_at_vertex[g.gverts[i].vertex->value];
+    }
+    // The branch point each rail set meets (its first), for rails through branch points.
+    std::map<std::size_t, std::uint32_t> branch_of;
+    for (const auto& l : r.links) {
+      if (!(l.to & kMaFlag) || (l.from & kMaFlag)) continue;
+      if (!g.macuts[l.to & ~kMaFlag].branch) continue;
+      branch_of.emplace(uf.find(l.from), l.to);
+    }
+    std::vector<std::pair<double, std::size_t>> narrow;
+    for (const auto& [corridor, w] : width) {
+      if (w < min_width) narrow.push_back({w, corridor});
+    }
+    std::sort(narrow.begin(), narrow.end());
+    bool removed = false;
+    kept = 0;
+    for (const auto& [w, corridor] : narrow) {
+      if (small_feature.count(corridor)) {
+        ++kept;
+        continue;
+      }
+      // The rails across the corridor: the rail sets bounding it, those that meet at one branch
+      // point taken together (a rail through a branch point, Table I cases 3 and 4). Delete
+      // the unit with the fewest sources that does not take the last rail from a concave
+      // vertex.
+      std::map<std::uint32_t, std::vector<std::size_t>> units;  // key: MA node or set
+      for (std::uint32_t b : bounds[corridor]) {
+        const std::size_t set = uf.find(b);
+        if (!sources_of.count(set)) continue;
+        const auto node = branch_of.find(set);
+        const std::uint32_t unit = node != branch_of.end() ? node->second
+                                                           : static_cast<std::uint32_t>(set);
+        auto& u = units[unit];
+        if (std::find(u.begin(), u.end(), set) == u.end()) u.push_back(set);
+      }
+      std::vector<std::uint32_t> best;
+      for (const auto& [unit, sets] : units) {
+        std::vector<std::uint32_t> srcs;
+        for (std::size_t set : sets) {
+          srcs.insert(srcs.end(), sources_of[set].begin(), sources_of[set].end());
+        }
+        const bool last_at_concave = std::any_of(srcs.begin(), srcs.end(), [&](std::uint32_t src) {
+          return g.gverts[src].vertex && rays_at_vertex[g.gverts[src].vertex->value] <= 1;
+        });
+        if (last_at_concave) continue;
+        if (best.empty() || srcs.size() < best.size()) best = srcs;
+      }
+      if (best.empty()) {
+        ++kept;
+        continue;
+      }
+      for (std::uint32_t src : best) {
+        const GCutVert& gv = g.gverts[src];
+        suppressed.push_back(gv.position);
+        DeletedRail d;
+        d.at = gv.position;
+        d.corridor_width = w;
+        for (const CutVert& c : g.cuts) {
+          if (c.g.value == src) d.patch = c.patch;
+        }
+        for (const RailSegment& seg : g.segments) {
+          if (g.cuts[seg.cut.index()].g.value == src && g.macuts[seg.ma.index()].branch) {
+            d.through_branch_point = true;
+          }
+        }
+        deleted.push_back(d);
+      }
+      removed = true;
+      break;
+    }
+    if (!removed) return;
+  }
+}
+
+}  // namespace laytracks::cutgraph_detail
