@@ -3,8 +3,11 @@
 #include <cmath>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #include "boundary_index.hpp"
+#include "corridors.hpp"
+#include "laytracks/cutgraph/boost_view.hpp"
 #include "laytracks/cutgraph/cut_graph.hpp"
 
 namespace laytracks {
@@ -97,6 +100,44 @@ std::vector<std::string> validate_cut_graph(const Part& part, const std::vector<
     if (crossings > 0) {
       problems.push_back(std::to_string(crossings) + " pairs of rails cross inside " +
                          part.patch_label(PatchId(p)));
+    }
+  }
+  // The CUT-GRAPH is bipartite: rail segments join boundary points to MA points only.
+  if (!is_bipartite_by_kind(to_boost_graph(graph))) {
+    problems.push_back("the CUT-GRAPH is not bipartite");
+  }
+  // Every corridor piece is bounded by two rails or corners, the boundary and the axis.
+  std::map<std::tuple<std::uint32_t, std::uint32_t, long long>, bool> railed;
+  const auto key = [&](PatchId p, std::uint32_t loop, double u) {
+    const double n = static_cast<double>(part.patches[p.index()].polygon.loops[loop].size());
+    return std::make_tuple(p.value, loop, std::llround(std::fmod(u, n) * 1e9));
+  };
+  for (const RailSegment& s : graph.segments) {
+    const CutVert& c = graph.cuts[s.cut.index()];
+    railed[key(c.patch, c.at.loop, c.at.u())] = true;
+  }
+  for (const CutVert& c : graph.cuts) {
+    // A CUT-VERT at a corner ends its rail there (fan or zero length).
+    const double n = static_cast<double>(part.patches[c.patch.index()].polygon.loops[c.at.loop].size());
+    if (c.at.s == 0.0 && cutgraph_detail::corner_turn(part, c.patch, c.at.loop, c.at.segment) != 0) {
+      railed[key(c.patch, c.at.loop, std::fmod(c.at.u(), n))] = true;
+    }
+  }
+  for (const CorridorPiece& piece : cutgraph_detail::corridor_pieces_impl(part, axes, graph)) {
+    const auto n = part.patches[piece.patch.index()].polygon.loops[piece.loop].size();
+    if (piece.u1 - piece.u0 >= static_cast<double>(n)) continue;  // a whole loop: a ring
+    for (double u : {piece.u0, piece.u1}) {
+      const double frac = u - std::floor(u);
+      const bool corner = frac == 0.0;
+      if (corner && cutgraph_detail::corner_turn(part, piece.patch, piece.loop,
+                                                  static_cast<std::uint32_t>(static_cast<std::size_t>(u) % n)) != 0) {
+        continue;
+      }
+      if (!railed.count(key(piece.patch, piece.loop, u))) {
+        problems.push_back("a corridor piece on " + part.patch_label(piece.patch) +
+                           " ends at a boundary point without a rail");
+        break;
+      }
     }
   }
   return problems;
