@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "boundary_index.hpp"
+#include "rail_layer.hpp"
 
 namespace laytracks::cutgraph_detail {
 namespace {
@@ -137,22 +138,45 @@ class Finder {
     return first + (k == 0 ? b.size() - 1 : static_cast<std::size_t>(k) - 1);
   }
 
+  /// Joins a CUT-SEG with the CUT-SEGs its points map onto across the medial axis. Several
+  /// points are mapped; one that lands on (or within the point tolerance of) a break point or
+  /// a corner is ambiguous, decided by rounding, and is not used. (A CUT-SEG that maps into a
+  /// concave vertex's fan therefore forms its own corridor with that fan.)
   void link_opposite(std::size_t i, UnionFind& uf) const {
     const CutSeg& cs = out_.segs[i];
     const auto& poly = part_.patches[cs.patch.index()].polygon.loops[cs.loop];
-    BoundaryPoint bp;
+    const double tol = kSamePointRel * part_.size;
+    for (double f : {0.5, 0.25, 0.75, 0.375, 0.625}) {
+      BoundaryPoint bp;
+      std::uint32_t seg;
+      double s;
+      bp.position = point_at(poly, cs.u0 + f * (cs.u1 - cs.u0), &seg, &s);
+      bp.site = {BoundarySite::Kind::Segment, cs.loop, seg};
+      bp.s = s;
+      const auto q = axes_[cs.patch.index()].opposite(bp);
+      if (!q || q->site.kind == BoundarySite::Kind::Corner) continue;
+      const double u = static_cast<double>(q->site.index) + q->s;
+      if (near_break(cs.patch.value, q->site.loop, u, q->position, tol)) continue;
+      uf.unite(i, seg_at(cs.patch.value, q->site.loop, u));
+    }
+  }
+
+  /// True when a point of loop l (parameter u, position x) is within tol of a break point.
+  bool near_break(std::uint32_t p, std::uint32_t l, double u, Vec2 x, double tol) const {
+    const auto it = breaks_.find({p, l});
+    if (it == breaks_.end()) return false;
+    const auto& b = it->second;
+    const auto& poly = part_.patches[p].polygon.loops[l];
+    const double n = static_cast<double>(poly.size());
+    u = std::fmod(u, n);
+    if (u < 0.0) u += n;
+    const auto k = static_cast<std::size_t>(std::upper_bound(b.begin(), b.end(), u) - b.begin());
     std::uint32_t seg;
     double s;
-    bp.position = point_at(poly, 0.5 * (cs.u0 + cs.u1), &seg, &s);
-    bp.site = {BoundarySite::Kind::Segment, cs.loop, seg};
-    bp.s = s;
-    const auto q = axes_[cs.patch.index()].opposite(bp);
-    if (!q) return;
-    if (q->site.kind == BoundarySite::Kind::Corner) {
-      uf.unite(i, fan_.at({cs.patch.value, q->site.loop, q->site.index}));
-      return;
+    for (std::size_t j : {(k + b.size() - 1) % b.size(), k % b.size()}) {
+      if (distance(point_at(poly, b[j], &seg, &s), x) <= tol) return true;
     }
-    uf.unite(i, seg_at(cs.patch.value, q->site.loop, static_cast<double>(q->site.index) + q->s));
+    return false;
   }
 
   /// Joins a CUT-SEG with the CUT-SEGs of the other patches on each B-Rep edge it covers.
@@ -228,8 +252,9 @@ std::vector<TrackSeed> track_seeds(const Part& part, const std::vector<MedialAxi
   // The longest CUT-SEG of each corridor (the first one on ties: deterministic).
   std::vector<std::size_t> master(corridors.count, SIZE_MAX);
   for (std::size_t i = 0; i < corridors.segs.size(); ++i) {
+    // Lengths equal within rounding are ties, kept by the first: the same in every pose.
     std::size_t& m = master[corridors.segs[i].corridor];
-    if (m == SIZE_MAX || corridors.segs[i].length > corridors.segs[m].length) m = i;
+    if (m == SIZE_MAX || corridors.segs[i].length > corridors.segs[m].length * (1.0 + kHalfMargin)) m = i;
   }
   std::vector<TrackSeed> seeds;
   for (std::size_t m : master) {

@@ -3,6 +3,7 @@
 #include "narrow.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <map>
 #include <numeric>
 #include <set>
@@ -109,6 +110,12 @@ void remove_narrow_corridors(const Part& part, const std::vector<MedialAxis>& ax
       sources_of[uf.find(i)].push_back(i);
       if (g.gverts[i].vertex) ++rays_at_vertex[g.gverts[i].vertex->value];
     }
+    // Where each G-CUT-VERT first appears along the boundary (patch, loop, u).
+    std::vector<std::tuple<std::uint32_t, std::uint32_t, long long>> place(
+        g.gverts.size(), std::make_tuple(UINT32_MAX, UINT32_MAX, LLONG_MAX));
+    for (const CutVert& c : g.cuts) {
+      place[c.g.index()] = std::min(place[c.g.index()], key(c.patch, c.at.loop, c.at.u()));
+    }
     // The branch point each rail set meets (its first), for rails through branch points.
     std::map<std::size_t, std::uint32_t> branch_of;
     for (const auto& l : r.links) {
@@ -116,11 +123,17 @@ void remove_narrow_corridors(const Part& part, const std::vector<MedialAxis>& ax
       if (!g.macuts[l.to & ~kMaFlag].branch) continue;
       branch_of.emplace(uf.find(l.from), l.to);
     }
-    std::vector<std::pair<double, std::size_t>> narrow;
+    // Widths within rounding of each other, or of the threshold, must decide the same in every
+    // pose: compare them on a grid of 1e-9 x the part's size.
+    const double grain = 1e-9 * part.size;
+    const auto quantum = [&](double x) { return std::llround(x / grain); };
+    std::vector<std::pair<long long, std::size_t>> order;
     for (const auto& [corridor, w] : width) {
-      if (w < min_width) narrow.push_back({w, corridor});
+      if (quantum(w) < quantum(min_width)) order.push_back({quantum(w), corridor});
     }
-    std::sort(narrow.begin(), narrow.end());
+    std::sort(order.begin(), order.end());
+    std::vector<std::pair<double, std::size_t>> narrow;
+    for (const auto& [q, corridor] : order) narrow.push_back({width[corridor], corridor});
     bool removed = false;
     kept = 0;
     for (const auto& [w, corridor] : narrow) {
@@ -142,7 +155,11 @@ void remove_narrow_corridors(const Part& part, const std::vector<MedialAxis>& ax
         auto& u = units[unit];
         if (std::find(u.begin(), u.end(), set) == u.end()) u.push_back(set);
       }
+      // Ties go to the unit whose first source comes first along the boundary: a key that does
+      // not depend on how the axis happened to be numbered, so the choice is the same in every
+      // pose.
       std::vector<std::uint32_t> best;
+      std::tuple<std::uint32_t, std::uint32_t, long long> best_key{};
       for (const auto& [unit, sets] : units) {
         std::vector<std::uint32_t> srcs;
         for (std::size_t set : sets) {
@@ -152,7 +169,13 @@ void remove_narrow_corridors(const Part& part, const std::vector<MedialAxis>& ax
           return g.gverts[src].vertex && rays_at_vertex[g.gverts[src].vertex->value] <= 1;
         });
         if (last_at_concave) continue;
-        if (best.empty() || srcs.size() < best.size()) best = srcs;
+        auto unit_key = std::make_tuple(UINT32_MAX, UINT32_MAX, LLONG_MAX);
+        for (std::uint32_t src : srcs) unit_key = std::min(unit_key, place[src]);
+        if (best.empty() || srcs.size() < best.size() ||
+            (srcs.size() == best.size() && unit_key < best_key)) {
+          best = srcs;
+          best_key = unit_key;
+        }
       }
       if (best.empty()) {
         ++kept;

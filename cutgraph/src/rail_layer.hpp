@@ -38,7 +38,8 @@ class RailLayer {
             // A branch point touching a reflex corner: the rail is one ray of the corner's fan
             // (Fig. 13), laid here; the corner's other images end there.
             const LoopPoint at{corner->loop, corner->index, 0.0};
-            const CutVertId c = cut_of(g, pid).value_or(make_cut(g, pid, at));
+            const std::optional<CutVertId> known = cut_of(g, pid);
+            const CutVertId c = known ? *known : make_cut(g, pid, at);
             MaPoint m;
             const MedialAxis& ma = axes_[p];
             m.edge = ma.incident(v).front();
@@ -195,9 +196,12 @@ class RailLayer {
   MaCutId make_macut(PatchId p, const MaPoint& m) {
     const MedialAxis& ma = axes_[p.index()];
     const MaEdge& e = ma.edge(m.edge);
+    // At a vertex when within the point tolerance of it (a distance, not a parameter: the
+    // same decision in every pose and at every scale).
     std::optional<MaVertexId> v;
-    if (m.t <= kAtVertexT) v = e.a;
-    if (m.t >= 1.0 - kAtVertexT) v = e.b;
+    const double tol = kSamePointRel * part_.size;
+    if (m.t <= kAtVertexT || distance(m.position, ma.vertex(e.a).position) <= tol) v = e.a;
+    if (m.t >= 1.0 - kAtVertexT || distance(m.position, ma.vertex(e.b).position) <= tol) v = e.b;
     const bool branch = v && ma.vertex(*v).degree >= 3;
     const bool round_end = v && ma.vertex(*v).degree == 1 && ma.vertex(*v).radius > 0.0;
     if (branch || round_end) {
