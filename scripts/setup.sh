@@ -10,6 +10,7 @@ packages=(
   libboost-graph-dev        # dual graph and CUT-GRAPH
   nlohmann-json3-dev        # the B-Rep JSON reader
   catch2                    # tests (v2)
+  python3-meshio gmsh       # mesh-writer tests: meshio reads every format back, gmsh opens .msh
 )
 
 missing=()
