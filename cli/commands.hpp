@@ -14,12 +14,15 @@ enum Status : int {
   kUsage = 2,         ///< the command line is wrong
   kInternal = 3,      ///< a stage failed its own check: a bug, please report it
   kIo = 4,            ///< an output file could not be written
+  kInvalidMesh = 5,   ///< quality: the mesh breaks a validity rule of quality.md
 };
 
 int run_medial(const std::vector<std::string>& args);
 extern const char* const kMedialHelp;
 int run_check_loops(const std::vector<std::string>& args);
 int run_draw(const std::vector<std::string>& args);
+int run_quality(const std::vector<std::string>& args);
+extern const char* const kQualityHelp;
 extern const char* const kDrawHelp;
 extern const char* const kCheckLoopsHelp;
 

@@ -17,14 +17,15 @@ const char* const kHelp =
     "  medial PART.json       the medial axis of every patch, as JSON and as a picture\n"
     "  check-loops PART.json  lay the rails and report how every rail chain ends\n"
     "  draw PART.json         picture of a stage: medial, corridors or tracks\n"
+    "  quality PART MESH.msh  rate any MSH 4.1 mesh of the part by quality.md\n"
     "  help [COMMAND]         this text, or a command's own\n"
     "\n"
     "The mesh and batch commands come with the mesh stage; they are not in this build yet.\n"
     "\n"
     "exit status: 0 done; 1 the part was refused or could not be read (the message says what\n"
     "and where); 2 wrong command line; 3 internal error (a stage failed its own check: please\n"
-    "report it with the part); 4 an output file could not be written. On any error nothing is\n"
-    "written, and an existing output file is left as it was.\n";
+    "report it with the part); 4 an output file could not be written; 5 (quality) the mesh is\n"
+    "not valid. On any error nothing is written, and an existing output file is left as it was.\n";
 
 int dispatch(const std::vector<std::string>& args) {
   using namespace laytracks::cli;
@@ -35,6 +36,8 @@ int dispatch(const std::vector<std::string>& args) {
       std::cout << kCheckLoopsHelp;
     } else if (args.size() > 1 && args[1] == "draw") {
       std::cout << kDrawHelp;
+    } else if (args.size() > 1 && args[1] == "quality") {
+      std::cout << kQualityHelp;
     } else {
       std::cout << kHelp;
     }
@@ -51,6 +54,7 @@ int dispatch(const std::vector<std::string>& args) {
   if (args[0] == "medial") return run_medial(rest);
   if (args[0] == "check-loops") return run_check_loops(rest);
   if (args[0] == "draw") return run_draw(rest);
+  if (args[0] == "quality") return run_quality(rest);
   throw UsageError("unknown command \"" + args[0] + "\" (see laytracks --help)");
 }
 

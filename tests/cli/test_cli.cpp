@@ -175,6 +175,34 @@ TEST_CASE("check-loops reports the cube's loops as JSON, and draw writes picture
   CHECK_FALSE(fs::exists(d / "x.svg"));
 }
 
+TEST_CASE("quality rates a Gmsh mesh of a part: quads valid, triangles refused", "[cli][quality]") {
+  const fs::path d = fresh_dir("quality");
+  for (const bool recombine : {true, false}) {
+    CAPTURE(recombine);
+    std::ofstream(d / "r.geo")
+        << "Point(1)={0,0,0,0.5}; Point(2)={10,0,0,0.5}; Point(3)={10,4,0,0.5};\n"
+           "Point(4)={0,4,0,0.5}; Line(1)={1,2}; Line(2)={2,3}; Line(3)={3,4}; Line(4)={4,1};\n"
+           "Curve Loop(1)={1,2,3,4}; Plane Surface(1)={1}; Mesh.Algorithm=6;\n"
+        << (recombine ? "Mesh.RecombineAll=1; Mesh.RecombinationAlgorithm=1;\n" : "");
+    const std::string gmsh = "gmsh " + q(d / "r.geo") + " -2 -format msh41 -o " + q(d / "r.msh") +
+                             " > /dev/null 2>&1";
+    REQUIRE(std::system(gmsh.c_str()) == 0);
+    const Run r = run("quality " + q(laytracks::test::cases_dir() + "/rect_10x4.json") + " " +
+                      q(d / "r.msh") + " --json " + q(d / "q.json"));
+    const auto doc = nlohmann::json::parse(slurp(d / "q.json"));
+    if (recombine) {
+      CHECK(r.status == 0);
+      CHECK_THAT(r.out, Catch::Contains("valid by quality.md: yes"));
+      CHECK(doc["triangles"] == 0);
+      CHECK(doc["quads"].get<int>() > 100);
+    } else {
+      CHECK(r.status == 5);
+      CHECK_THAT(r.err, Catch::Contains("rule 1"));
+      CHECK(doc["triangles"].get<int>() > 100);
+    }
+  }
+}
+
 TEST_CASE("help describes the commands and exits 0", "[cli]") {
   const Run help = run("--help");
   CHECK(help.status == 0);
