@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "boundary_index.hpp"
+#include "laytracks/brep/union_find.hpp"
 #include "rail_layer.hpp"
 
 namespace laytracks::cutgraph_detail {
@@ -14,20 +15,6 @@ namespace {
 
 /// Relative margin in Eq. (1) so that L / w = k + 1/2 rounds the same way in every pose.
 constexpr double kHalfMargin = 1e-9;
-
-struct UnionFind {
-  std::vector<std::size_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  std::size_t find(std::size_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 /// Point at loop parameter u (wrapped) of a polygon loop.
 Vec2 point_at(const std::vector<Vec2>& loop, double u, std::uint32_t* seg, double* s) {

@@ -10,24 +10,11 @@
 #include <tuple>
 
 #include "corridors.hpp"
+#include "laytracks/brep/union_find.hpp"
 #include "rail_layer.hpp"
 
 namespace laytracks::cutgraph_detail {
 namespace {
-
-struct UnionFind {
-  std::vector<std::size_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  std::size_t find(std::size_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 /// The state of one round: the source rails laid with some deleted, and their corridors.
 struct Round {
