@@ -5,8 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
+#include <string>
+#include <utility>
 
 #include "laytracks/brep/error.hpp"
+#include "laytracks/brep/union_find.hpp"
 #include "laytracks/medial/medial_axis.hpp"
 #include "sites.hpp"
 #include "voronoi.hpp"
@@ -15,28 +19,12 @@ namespace laytracks {
 namespace {
 
 using medial_detail::is_endpoint_of;
+using medial_detail::kMergeRel;
 using medial_detail::VoronoiDiagram;
 
-/// Voronoi vertices joined by an interior edge shorter than this x the polygon's diagonal are
-/// one vertex: the diagram of cocircular sites (a square's centre) has zero-length edges.
-constexpr double kMergeRel = 1e-9;
 /// After pruning smooth branches, interior leaf edges shorter than this x the chord tolerance
 /// are discretisation artefacts (where a polygonised arc meets a straight edge) and go too.
 constexpr double kStubChordFactor = 4.0;
-
-struct UnionFind {
-  std::vector<std::uint32_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0u); }
-  std::uint32_t find(std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(std::uint32_t a, std::uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the lowest index represents
-  }
-};
 
 /// The working graph between extraction and the final MedialAxis.
 struct Graph {
@@ -77,7 +65,7 @@ class Extractor {
   }
 
   MedialAxis run() {
-    VoronoiDiagram vd = medial_detail::segment_voronoi(poly_);
+    VoronoiDiagram vd = medial_detail::segment_voronoi(poly_, options_.backend);
     refine(vd);
     const std::vector<std::uint32_t> kept = interior_edges(vd);
     Graph g = merge(vd, kept);
@@ -114,7 +102,7 @@ class Extractor {
     std::vector<std::uint32_t> new_id(vd.vertices.size(), UINT32_MAX);
     Graph g;
     auto vertex_of = [&](std::uint32_t v) {
-      const std::uint32_t r = uf.find(v);
+      const auto r = static_cast<std::uint32_t>(uf.find(v));
       if (new_id[r] == UINT32_MAX) {
         new_id[r] = static_cast<std::uint32_t>(g.vertices.size());
         g.vertices.emplace_back();
@@ -140,7 +128,7 @@ class Extractor {
     std::vector<double> best(g.vertices.size(), INFINITY);
     std::vector<std::vector<BoundarySite>> sites(g.vertices.size());
     for (std::uint32_t v = 0; v < vd.vertices.size(); ++v) {
-      const std::uint32_t r = uf.find(v);
+      const auto r = static_cast<std::uint32_t>(uf.find(v));
       if (new_id[r] == UINT32_MAX) continue;
       const std::uint32_t id = new_id[r];
       const auto& vv = vd.vertices[v];
@@ -281,9 +269,36 @@ class Extractor {
 
 }  // namespace
 
+namespace medial_detail {
+
+VoronoiDiagram segment_voronoi(const Polygon2& polygon, VoronoiBackend backend) {
+  if (backend == VoronoiBackend::Cgal) return segment_voronoi_cgal(polygon);
+  std::string why;
+  try {
+    std::optional<VoronoiDiagram> vd = segment_voronoi_boost(polygon, &why);
+    if (vd) return std::move(*vd);
+  } catch (const InternalError& e) {
+    if (backend == VoronoiBackend::BoostOnly) throw;
+    why = e.what();
+  }
+  if (backend == VoronoiBackend::BoostOnly) {
+    throw InternalError("medial axis (Boost backend): " + why);
+  }
+  return segment_voronoi_cgal(polygon);
+}
+
+}  // namespace medial_detail
+
 MedialAxis compute_medial_axis(const Polygon2& polygon, const MedialOptions& options) {
   MedialAxis ma = Extractor(polygon, options).run();
-  const std::vector<std::string> problems = ma.validate();
+  std::vector<std::string> problems = ma.validate();
+  if (!problems.empty() && options.backend == VoronoiBackend::Boost) {
+    // Boost decided the topology on the rounded corners; CGAL decides it on the input.
+    MedialOptions cgal = options;
+    cgal.backend = VoronoiBackend::Cgal;
+    ma = Extractor(polygon, cgal).run();
+    problems = ma.validate();
+  }
   if (!problems.empty()) {
     std::string msg = "medial axis failed its self-check (" + std::to_string(problems.size()) +
                       " problems); first: " + problems.front();

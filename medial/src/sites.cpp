@@ -39,15 +39,29 @@ bool is_endpoint_of(const Polygon2& poly, const BoundarySite& corner, const Boun
   return corner.index == segment.index || corner.index == (segment.index + 1) % n;
 }
 
-double distance_spread(const Polygon2& poly, const std::array<BoundarySite, 3>& sites, Vec2 x) {
+namespace {
+
+/// Largest minus smallest distance from x to the sites in [first, last).
+template <typename It>
+double spread_of(const Polygon2& poly, It first, It last, Vec2 x) {
   double lo = INFINITY;
   double hi = -INFINITY;
-  for (const auto& s : sites) {
-    const double d = site_distance(poly, s, x);
+  for (It s = first; s != last; ++s) {
+    const double d = site_distance(poly, *s, x);
     lo = std::min(lo, d);
     hi = std::max(hi, d);
   }
   return hi - lo;
+}
+
+}  // namespace
+
+double distance_spread(const Polygon2& poly, const std::vector<BoundarySite>& sites, Vec2 x) {
+  return spread_of(poly, sites.begin(), sites.end(), x);
+}
+
+double distance_spread(const Polygon2& poly, const std::array<BoundarySite, 3>& sites, Vec2 x) {
+  return spread_of(poly, sites.begin(), sites.end(), x);
 }
 
 namespace {
@@ -230,6 +244,19 @@ std::vector<Vec2> closed_form_centres(const std::array<Constraint, 3>& cs) {
   return out;
 }
 
+/// Heights h at which x = p + h m, whose signed distance to two lines through p is h c0 (m the
+/// unit bisector of their inward normals), is as far from constraint c; none when degenerate.
+std::vector<double> bisector_heights(Vec2 p, Vec2 m, double c0, const Constraint& c) {
+  if (c.is_line) {
+    const double denom = c0 - dot(m, c.n);
+    if (!(std::fabs(denom) > 1e-15)) return {};
+    return {dot(p - c.a, c.n) / denom};
+  }
+  // |p + h m - c.a|^2 = (h c0)^2
+  const Vec2 w = p - c.a;
+  return quadratic_roots(1.0 - c0 * c0, 2.0 * dot(w, m), dot(w, w));
+}
+
 /// The point where the circle centred at x touches a constraint.
 Vec2 touch(const Constraint& c, Vec2 x) {
   return c.is_line ? x - dot(x - c.a, c.n) * c.n : c.a;
@@ -237,8 +264,14 @@ Vec2 touch(const Constraint& c, Vec2 x) {
 
 }  // namespace
 
-Vec2 refine_vertex(const Polygon2& poly, const std::array<BoundarySite, 3>& sites, Vec2 approx,
-                   Vec2 centre, double size) {
+Vec2 refine_vertex(const Polygon2& poly,
+                   const std::vector<BoundarySite>& all_sites,
+                   Vec2 approx,
+                   Vec2 centre,
+                   double size) {
+  if (all_sites.size() < 3) return approx;
+  // The first three sites pin the disk down; the others (cocircular) only repeat it.
+  const std::array<BoundarySite, 3> sites = {all_sites[0], all_sites[1], all_sites[2]};
   // A corner with both its segments: the vertex is the corner itself (radius 0).
   for (const auto& c : sites) {
     if (c.kind != BoundarySite::Kind::Corner) continue;
@@ -249,9 +282,11 @@ Vec2 refine_vertex(const Polygon2& poly, const std::array<BoundarySite, 3>& site
   const std::array<Constraint, 3> cs = {constraint_of(poly, sites[0]), constraint_of(poly, sites[1]),
                                         constraint_of(poly, sites[2])};
   std::vector<Vec2> candidates;
-  // A segment with one of its own end points, or two collinear segments meeting end to end:
-  // the vertex lies on the segment's normal at that end point, at the height where the disk
-  // touches the third site. (The general formulas are singular there.)
+  // A segment with one of its own end points: the vertex lies on the segment's normal at that
+  // end point, at the height where the disk touches the third site. Two segments meeting end
+  // to end (not folding back): it lies on the bisector of their lines through the joint. (The
+  // general formulas are singular for collinear segments, and for nearly collinear ones they
+  // lose the bisector's direction: the vertex drifts sideways by about 1e-16 / the turn angle.)
   bool reduced = false;
   const auto reduce_at = [&](Vec2 a, const BoundarySite& segment, const Constraint& third) {
     const Vec2 n = inward_normal(poly, segment);
@@ -266,6 +301,13 @@ Vec2 refine_vertex(const Polygon2& poly, const std::array<BoundarySite, 3>& site
       }
     }
   }
+  // The adjacent pair with the smallest turn, if under 60 degrees (beyond, the general formulas
+  // are well-conditioned). The smallest, not the first found: with a square corner as the pair,
+  // a third segment nearly parallel to one of its sides makes the height ill-conditioned.
+  std::size_t pi = 3;
+  std::size_t pj = 3;
+  double best_cos = 0.5;
+  Vec2 joint;
   for (std::size_t i = 0; i < 3 && !reduced; ++i) {
     for (std::size_t j = i + 1; j < 3 && !reduced; ++j) {
       const BoundarySite& a = sites[i];
@@ -278,12 +320,22 @@ Vec2 refine_vertex(const Polygon2& poly, const std::array<BoundarySite, 3>& site
       const bool b_follows = (a.index + 1) % n == b.index;
       const bool a_follows = (b.index + 1) % n == a.index;
       if (!a_follows && !b_follows) continue;
-      const Vec2 da = seg_end(poly, a.loop, a.index) - seg_start(poly, a.loop, a.index);
-      const Vec2 db = seg_end(poly, b.loop, b.index) - seg_start(poly, b.loop, b.index);
-      if (std::fabs(cross(da, db)) > 1e-12 * norm(da) * norm(db) || dot(da, db) <= 0.0) continue;
-      const Vec2 joint = b_follows ? seg_start(poly, b.loop, b.index) : seg_start(poly, a.loop, a.index);
-      reduce_at(joint, a, cs[3 - i - j]);
+      const double c = dot(inward_normal(poly, a), inward_normal(poly, b));
+      if (c <= best_cos) continue;
+      best_cos = c;
+      pi = i;
+      pj = j;
+      joint = b_follows ? seg_start(poly, b.loop, b.index) : seg_start(poly, a.loop, a.index);
     }
+  }
+  if (!reduced && pi < 3) {
+    const Vec2 na = inward_normal(poly, sites[pi]);
+    const Vec2 sum = na + inward_normal(poly, sites[pj]);
+    const Vec2 m = (1.0 / norm(sum)) * sum;
+    for (double h : bisector_heights(joint, m, dot(m, na), cs[3 - pi - pj])) {
+      if (std::isfinite(h)) candidates.push_back(joint + h * m);
+    }
+    reduced = true;
   }
   if (!reduced) {
     candidates = closed_form_centres(cs);

@@ -1,5 +1,5 @@
-// The segment Voronoi diagram through CGAL's Segment_Delaunay_graph_2: the only translation unit
-// of medial/ that includes CGAL.
+// The segment Voronoi diagram through CGAL's Segment_Delaunay_graph_2 (the CGAL backend): the
+// only translation unit of medial/ that includes CGAL.
 //
 // Choices, measured (see docs/medial.md):
 // - filtered traits without intersections on EPICK with Field_with_sqrt_tag: exact predicates
@@ -46,7 +46,7 @@ class Builder {
     insert_sites();
     mark_left_edges();
     VoronoiDiagram out;
-    out.turn = turns();
+    out.turn = exact_turns(polygon_);
     collect(out);
     return out;
   }
@@ -142,21 +142,6 @@ class Builder {
 
   static std::pair<const void*, int> key(const Sdg::Edge& e) { return {&*e.first, e.second}; }
 
-  std::vector<std::vector<std::int8_t>> turns() const {
-    std::vector<std::vector<std::int8_t>> turn(polygon_.loops.size());
-    for (std::size_t l = 0; l < polygon_.loops.size(); ++l) {
-      const auto& loop = polygon_.loops[l];
-      const std::size_t n = loop.size();
-      turn[l].resize(n);
-      for (std::size_t i = 0; i < n; ++i) {
-        const auto o = CGAL::orientation(to_cgal(loop[(i + n - 1) % n]), to_cgal(loop[i]),
-                                         to_cgal(loop[(i + 1) % n]));
-        turn[l][i] = static_cast<std::int8_t>(o == CGAL::LEFT_TURN ? 1 : o == CGAL::RIGHT_TURN ? -1 : 0);
-      }
-    }
-    return turn;
-  }
-
   BoundarySite site(Sdg::Vertex_handle v) const {
     const auto it = site_of_.find(&*v);
     if (it == site_of_.end()) throw InternalError("medial axis: a Voronoi site has no origin");
@@ -169,7 +154,7 @@ class Builder {
       VoronoiVertex vv;
       const Point p = sdg_.primal(f);
       vv.position = {CGAL::to_double(p.x()), CGAL::to_double(p.y())};
-      for (int i = 0; i < 3; ++i) vv.sites[static_cast<std::size_t>(i)] = site(f->vertex(i));
+      for (int i = 0; i < 3; ++i) vv.sites.push_back(site(f->vertex(i)));
       face_index[&*f] = static_cast<std::uint32_t>(out.vertices.size());
       out.vertices.push_back(vv);
     }
@@ -227,6 +212,23 @@ class Builder {
 
 }  // namespace
 
-VoronoiDiagram segment_voronoi(const Polygon2& polygon) { return Builder(polygon).run(); }
+std::vector<std::vector<std::int8_t>> exact_turns(const Polygon2& polygon) {
+  std::vector<std::vector<std::int8_t>> turn(polygon.loops.size());
+  for (std::size_t l = 0; l < polygon.loops.size(); ++l) {
+    const auto& loop = polygon.loops[l];
+    const std::size_t n = loop.size();
+    turn[l].resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto o = CGAL::orientation(to_cgal(loop[(i + n - 1) % n]), to_cgal(loop[i]),
+                                       to_cgal(loop[(i + 1) % n]));
+      turn[l][i] = static_cast<std::int8_t>(o == CGAL::LEFT_TURN    ? 1
+                                            : o == CGAL::RIGHT_TURN ? -1
+                                                                    : 0);
+    }
+  }
+  return turn;
+}
+
+VoronoiDiagram segment_voronoi_cgal(const Polygon2& polygon) { return Builder(polygon).run(); }
 
 }  // namespace laytracks::medial_detail

@@ -82,11 +82,27 @@ struct MaPoint {
   double radius = 0.0;
 };
 
+/// Which segment Voronoi diagram the medial axis is extracted from. Both give the same axis
+/// (tests/medial/test_backends.cpp); docs/medial-backends.md has the timings and the rules.
+enum class VoronoiBackend : std::uint8_t {
+  /// CGAL's Segment_Delaunay_graph_2: exact on the input doubles; slow where sites are nearly
+  /// degenerate (polygonised circles).
+  Cgal,
+  /// Boost.Polygon's voronoi, exact on the corners rounded to a grid of 2^31 units across the
+  /// polygon; 4x to 40x faster. Where the rounding changes the diagram beyond local repair, two
+  /// corners share a grid point, or the axis fails its self-check, CGAL does the polygon again.
+  Boost,
+  /// Boost without that fallback: throws InternalError instead (for tests and benchmarks).
+  BoostOnly
+};
+
 struct MedialOptions {
   /// Sagitta bound used to discretise the arcs of this polygon (part units). Structure smaller
   /// than a few times this, left over after pruning smooth branches, is an artefact of the
   /// discretisation and is pruned too. 0 disables that step.
   double chord_tol = 0.0;
+  /// The Voronoi backend (see VoronoiBackend).
+  VoronoiBackend backend = VoronoiBackend::Boost;
 };
 
 class MedialAxis {
@@ -111,9 +127,10 @@ class MedialAxis {
   std::vector<Vec2> sample_edge(MaEdgeId e, double max_chord) const;
 
   /// Boundary -> MA: the centre of the maximal disk that touches the boundary at point p of a
-  /// segment site. At a convex corner this is the MA end point there (radius 0). Near a smooth
-  /// corner whose branch was pruned, the nearest boundary point still covered is used.
-  /// Empty only when p is not on the polygon's boundary.
+  /// segment site. At a convex corner this is the MA end point there (radius 0). On or beside
+  /// a polygonised convex arc, whose branches were pruned, it is the vertex whose circle passes
+  /// closest to p (the arc's centre, within the chord tolerance). Empty only when p is not on
+  /// a segment or the axis has no vertex of positive radius.
   std::optional<MaPoint> project(const BoundaryPoint& p) const;
   /// Boundary -> MA at a reflex corner, whose maximal disks form a fan: w in [0, 1] sweeps the
   /// fan from the normal of the incoming segment (w = 0) to that of the outgoing one (w = 1).
