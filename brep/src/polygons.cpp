@@ -114,11 +114,8 @@ std::string describe(const BuildState& s, std::size_t p, const Conflict& c) {
   return prefix + loop_name(c.second.loop) + verb + object + " near " + point(where, s.part.size);
 }
 
-/// Refuses the first (in loop order) pair of segments of patch p that meet where they must not.
-void check_segments(const BuildState& s, std::size_t p) {
-  const Loops2& loops = s.loops2d[p];
-  std::vector<SegmentRef> segments;
-  std::vector<Box2> boxes;
+/// Every segment of the loops, in loop order, with its bounding box.
+void segment_boxes(const Loops2& loops, std::vector<SegmentRef>& segments, std::vector<Box2>& boxes) {
   for (std::size_t l = 0; l < loops.size(); ++l) {
     for (std::size_t i = 0; i < loops[l].size(); ++i) {
       segments.push_back({l, i});
@@ -128,6 +125,14 @@ void check_segments(const BuildState& s, std::size_t p) {
       boxes.push_back(box);
     }
   }
+}
+
+/// Refuses the first (in loop order) pair of segments of patch p that meet where they must not.
+void check_segments(const BuildState& s, std::size_t p) {
+  const Loops2& loops = s.loops2d[p];
+  std::vector<SegmentRef> segments;
+  std::vector<Box2> boxes;
+  segment_boxes(loops, segments, boxes);
   std::optional<Conflict> first;
   for (const auto& [i, j] : overlapping_boxes(boxes)) {
     const auto c = conflict(loops, segments[i], segments[j]);
@@ -153,19 +158,11 @@ bool ray_crosses(Vec2 p, Vec2 a, Vec2 b) {
 void check_hole_placement(const BuildState& s, std::size_t p) {
   const Loops2& loops = s.loops2d[p];
   if (loops.size() < 2) return;
-  double right = -std::numeric_limits<double>::infinity();
   std::vector<SegmentRef> segments;
   std::vector<Box2> boxes;
-  for (std::size_t l = 0; l < loops.size(); ++l) {
-    for (std::size_t i = 0; i < loops[l].size(); ++i) {
-      segments.push_back({l, i});
-      Box2 box;
-      box.add(start(loops, segments.back()));
-      box.add(end(loops, segments.back()));
-      boxes.push_back(box);
-      right = std::max(right, box.hi.x);
-    }
-  }
+  segment_boxes(loops, segments, boxes);
+  double right = -std::numeric_limits<double>::infinity();
+  for (const Box2& box : boxes) right = std::max(right, box.hi.x);
   std::vector<Box2> rays(loops.size());  // rays[l]: from loops[l][0] to the right; 0 unused
   for (std::size_t l = 1; l < loops.size(); ++l) {
     rays[l].add(loops[l][0]);
