@@ -1,6 +1,7 @@
 // Rails across patches (Algorithm II), corridors and track rails, on the test parts.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -85,6 +86,42 @@ TEST_CASE("closed cube: rails through the edge midpoints, loops round every corn
   }
   // Corridors round each corner are 5 long: 5 tracks, so 4 loops per corner.
   CHECK(loops == 8 * 4);
+}
+
+TEST_CASE("the validator catches crossing rails, MA points off the axis and missing images",
+          "[cutgraph][validator]") {
+  const Laid l = lay(read_brep_json(cases_dir() + "/rect_10x4.json"), 0.5);
+  REQUIRE(validate_cut_graph(l.part, l.axes, l.graph).empty());
+  const auto mentions = [](const std::vector<std::string>& problems, const std::string& what) {
+    return std::any_of(problems.begin(), problems.end(),
+                       [&](const std::string& p) { return p.find(what) != std::string::npos; });
+  };
+  {  // an MA-CUT-VERT moved off its MA edge
+    CutGraph g = l.graph;
+    g.macuts[0].point.position = g.macuts[0].point.position + Vec2{0.3, 0.2};
+    CHECK(mentions(validate_cut_graph(l.part, l.axes, g), "lies off its MA edge"));
+  }
+  {  // two rails of the long sides made to cross: swap the MA points of two rail segments
+    CutGraph g = l.graph;
+    std::size_t a = SIZE_MAX, b = SIZE_MAX;
+    for (std::size_t i = 0; i < g.segments.size(); ++i) {
+      const Vec2 c = g.cuts[g.segments[i].cut.index()].position;
+      const MaCutVert& m = g.macuts[g.segments[i].ma.index()];
+      if (m.branch || std::fabs(c.y - g.cuts[g.segments[0].cut.index()].position.y) > 1e-9) continue;
+      if (a == SIZE_MAX) a = i; else if (std::fabs(c.x - g.cuts[g.segments[a].cut.index()].position.x) > 1.0) { b = i; break; }
+    }
+    REQUIRE(b != SIZE_MAX);
+    std::swap(g.segments[a].ma, g.segments[b].ma);
+    CHECK(mentions(validate_cut_graph(l.part, l.axes, g), "cross inside"));
+  }
+  {  // a rail point on a shared edge with no image on either patch
+    const Laid cube = lay(read_brep_json(cases_dir() + "/closed_cube.json"), 1.0);
+    CutGraph g = cube.graph;
+    GCutVert orphan = g.gverts.front();
+    orphan.source = false;
+    g.gverts.push_back(orphan);
+    CHECK(mentions(validate_cut_graph(cube.part, cube.axes, g), "has 0 images but its edge has 2"));
+  }
 }
 
 TEST_CASE("a closed hexagonal prism closes its loops too", "[cutgraph]") {
