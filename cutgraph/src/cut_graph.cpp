@@ -40,7 +40,6 @@ namespace cutgraph_detail {
 /// pieces meet; what is left are loops.
 void extract_chains(const Part& part, const BoundaryIndex& index, const RailLayer& layer,
                     CutGraph& g) {
-  constexpr std::uint32_t kMaFlag = 1u << 31;
   std::map<std::uint32_t, std::vector<std::size_t>> at;  // node -> link indices
   const auto& links = layer.links();
   for (std::size_t i = 0; i < links.size(); ++i) {
@@ -48,8 +47,8 @@ void extract_chains(const Part& part, const BoundaryIndex& index, const RailLaye
     at[links[i].to].push_back(i);
   }
   const auto end_kind = [&](std::uint32_t node) {
-    if (node & kMaFlag) {
-      return g.macuts[node & ~kMaFlag].branch ? RailEnd::BranchPoint : RailEnd::RoundCorner;
+    if (node & kMaNodeFlag) {
+      return g.macuts[node & ~kMaNodeFlag].branch ? RailEnd::BranchPoint : RailEnd::RoundCorner;
     }
     const std::size_t degree = at[node].size();
     const GCutVert& gv = g.gverts[node];
@@ -76,7 +75,7 @@ void extract_chains(const Part& part, const BoundaryIndex& index, const RailLaye
   };
   // Where chains stop: MA nodes, corners, and points where other than two rails meet.
   const auto stops = [&](std::uint32_t node) {
-    if ((node & kMaFlag) || at[node].size() != 2) return true;
+    if ((node & kMaNodeFlag) || at[node].size() != 2) return true;
     const RailEnd e = end_kind(node);
     return e == RailEnd::ConcaveVertex || e == RailEnd::ConvexVertex;
   };
@@ -92,14 +91,14 @@ void extract_chains(const Part& part, const BoundaryIndex& index, const RailLaye
       const auto& l = links[li];
       patches.push_back(l.patch);
       chain.closure_gap = std::max(chain.closure_gap, l.gap);
-      if (!(node & kMaFlag)) chain.through.push_back(GCutId(node));
+      if (!(node & kMaNodeFlag)) chain.through.push_back(GCutId(node));
       node = l.from == node ? l.to : l.from;
       if (node == start && !stops(node)) {
         chain.start = chain.end = RailEnd::Loop;
         break;
       }
       if (stops(node)) {
-        if (!(node & kMaFlag)) chain.through.push_back(GCutId(node));
+        if (!(node & kMaNodeFlag)) chain.through.push_back(GCutId(node));
         chain.end = end_kind(node);
         break;
       }

@@ -34,8 +34,6 @@ Round lay_round(const Part& part, const std::vector<MedialAxis>& axes,
   return r;
 }
 
-constexpr std::uint32_t kMaFlag = 1u << 31;
-
 /// True when G-CUT-VERT g sits at a corner that is not smooth (rails end there).
 bool at_corner(const Part& part, const BoundaryIndex& index, const GCutVert& g) {
   if (!g.vertex) return false;
@@ -60,7 +58,7 @@ void remove_narrow_corridors(const Part& part, const std::vector<MedialAxis>& ax
     // Rails joined through boundary points (not through MA nodes or corners) form one set.
     UnionFind uf(g.gverts.size());
     for (const auto& l : r.links) {
-      if ((l.from & kMaFlag) || (l.to & kMaFlag)) continue;
+      if ((l.from & kMaNodeFlag) || (l.to & kMaNodeFlag)) continue;
       if (at_corner(part, index, g.gverts[l.from]) || at_corner(part, index, g.gverts[l.to])) continue;
       uf.unite(l.from, l.to);
     }
@@ -106,8 +104,8 @@ void remove_narrow_corridors(const Part& part, const std::vector<MedialAxis>& ax
     // The branch point each rail set meets (its first), for rails through branch points.
     std::map<std::size_t, std::uint32_t> branch_of;
     for (const auto& l : r.links) {
-      if (!(l.to & kMaFlag) || (l.from & kMaFlag)) continue;
-      if (!g.macuts[l.to & ~kMaFlag].branch) continue;
+      if (!(l.to & kMaNodeFlag) || (l.from & kMaNodeFlag)) continue;
+      if (!g.macuts[l.to & ~kMaNodeFlag].branch) continue;
       branch_of.emplace(uf.find(l.from), l.to);
     }
     // Widths within rounding of each other, or of the threshold, must decide the same in every

@@ -18,6 +18,8 @@ namespace laytracks::cutgraph_detail {
 constexpr double kSamePointRel = 1e-7;
 /// An MA point within this parameter distance of an edge's end is that end's vertex.
 constexpr double kAtVertexT = 1e-9;
+/// Nodes of the rail network: a G-CUT-VERT index, or this flag with an MA-CUT-VERT index.
+constexpr std::uint32_t kMaNodeFlag = 1u << 31;
 
 class RailLayer {
  public:
@@ -75,7 +77,7 @@ class RailLayer {
 
   /// Per landing: the two G-CUT-VERTs a rail piece joins in a patch, through an MA-CUT-VERT.
   struct Link {
-    std::uint32_t from;  ///< node: G-CUT-VERT index, or gverts.size() + MA-CUT-VERT index
+    std::uint32_t from;  ///< node: a G-CUT-VERT index, or kMaNodeFlag | an MA-CUT-VERT index
     std::uint32_t to;
     PatchId patch;
     double gap = 0.0;
@@ -220,9 +222,7 @@ class RailLayer {
     return id;
   }
 
-  std::uint32_t node_of(MaCutId m) const {
-    return static_cast<std::uint32_t>(1u << 31) | m.value;
-  }
+  static std::uint32_t node_of(MaCutId m) { return kMaNodeFlag | m.value; }
 
   std::string where(CutVertId c) const {
     const CutVert& cv = g_.cuts[c.index()];

@@ -212,7 +212,6 @@ std::vector<Vec2> closed_form_centres(const std::array<Constraint, 3>& cs) {
   // One or two points: the centre moves on a line x0 + s t, and r(s) is known along it.
   Vec2 x0;
   Vec2 t;
-  std::function<double(double)> unused;
   double r0 = 0.0;
   double r1 = 0.0;  // r(s) = r0 + r1 s for the line constraint used
   const Constraint* line = nullptr;
