@@ -197,6 +197,20 @@ class RailLayer {
 
   MaCutId make_macut(PatchId p, const MaPoint& m) {
     const MedialAxis& ma = axes_[p.index()];
+    if (!m.edge.valid()) {
+      // The axis is a single point (a polygonised disk): every rail ends at its centre.
+      const auto it = branch_at_.find({p.value, 0u});
+      if (it != branch_at_.end()) return it->second;
+      MaCutVert mc;
+      mc.patch = p;
+      mc.point = m;
+      mc.vertex = MaVertexId(std::size_t{0});
+      mc.round_end = true;
+      const MaCutId id(g_.macuts.size());
+      g_.macuts.push_back(mc);
+      branch_at_[{p.value, 0u}] = id;
+      return id;
+    }
     const MaEdge& e = ma.edge(m.edge);
     // At a vertex when within the point tolerance of it (a distance, not a parameter: the
     // same decision in every pose and at every scale).

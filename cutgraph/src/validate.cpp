@@ -68,7 +68,8 @@ std::vector<std::string> validate_cut_graph(const Part& part, const std::vector<
     const CutVert& c = graph.cuts[s.cut.index()];
     const MaCutVert& m = graph.macuts[s.ma.index()];
     const MedialAxis& ma = axes[m.patch.index()];
-    const MaPoint on = ma.point_on_edge(m.point.edge, m.point.t);
+    const MaPoint on = m.point.edge.valid() ? ma.point_on_edge(m.point.edge, m.point.t)
+                                            : MaPoint{{}, 0.0, ma.vertices().front().position, 0.0};
     if (m.point.t < -1e-12 || m.point.t > 1.0 + 1e-12 || distance(on.position, m.point.position) > tol) {
       problems.push_back("an MA-CUT-VERT on " + part.patch_label(m.patch) + " lies off its MA edge");
     }

@@ -195,6 +195,14 @@ std::optional<MaPoint> MedialAxis::locate(MaEdgeId id, Vec2 x) const {
 
 std::optional<MaPoint> MedialAxis::project(const BoundaryPoint& bp) const {
   if (bp.site.kind != BoundarySite::Kind::Segment) return std::nullopt;
+  if (edges_.empty()) {
+    // A polygonised disk: its axis is its centre, which every boundary point maps to.
+    if (vertices_.empty()) return std::nullopt;
+    MaPoint centre;
+    centre.position = vertices_.front().position;
+    centre.radius = vertices_.front().radius;
+    return centre;
+  }
   const Vec2 s0 = seg_start(polygon_, bp.site.loop, bp.site.index);
   const Vec2 s1 = seg_end(polygon_, bp.site.loop, bp.site.index);
   const Vec2 p = lerp(s0, s1, bp.s);
@@ -291,7 +299,7 @@ std::vector<BoundaryPoint> MedialAxis::touching_points(MaVertexId id) const {
 
 std::optional<BoundaryPoint> MedialAxis::opposite(const BoundaryPoint& p) const {
   const std::optional<MaPoint> m = project(p);
-  if (!m) return std::nullopt;
+  if (!m || !m->edge.valid()) return std::nullopt;  // a disk's centre has no other side
   const MaEdge& e = edges_[m->edge.index()];
   return touching_point(*m, e.left == p.site ? Side::Right : Side::Left);
 }

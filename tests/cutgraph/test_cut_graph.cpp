@@ -124,6 +124,25 @@ TEST_CASE("the validator catches crossing rails, MA points off the axis and miss
   }
 }
 
+TEST_CASE("a round plate: its axis is one point, and every rail ends at the centre",
+          "[cutgraph]") {
+  RawPart raw;
+  raw.source = "disk";
+  for (int i = 0; i < 3; ++i) {
+    const double a = 2.0 * M_PI * i / 3.0;
+    raw.vertices.push_back({10.0 * std::cos(a), 10.0 * std::sin(a), 0.0});
+    raw.arcs.push_back({i, (i + 1) % 3, {10.0 * std::cos(a + M_PI / 3.0), 10.0 * std::sin(a + M_PI / 3.0), 0.0}});
+  }
+  raw.patches.push_back({std::string("disk"), {{0, 1, 2}}});
+  const Laid l = lay(raw, 1.0);
+  REQUIRE(l.axes[0].edges().empty());
+  CHECK(validate_cut_graph(l.part, l.axes, l.graph).empty());
+  const auto e = ends(l.graph);
+  CHECK(e.count(RailEnd::Lost) == 0);
+  CHECK(e.at(RailEnd::RoundCorner) == e.at(RailEnd::FreeEdge));
+  CHECK(e.at(RailEnd::RoundCorner) >= 50);  // about 2 pi 10 / 1 tracks
+}
+
 TEST_CASE("a closed hexagonal prism closes its loops too", "[cutgraph]") {
   const Laid l = lay(hex_prism(), 0.8);
   CHECK(validate_cut_graph(l.part, l.axes, l.graph).empty());

@@ -74,7 +74,8 @@ enum class Side : std::uint8_t { Left, Right };
 
 /// A point of the MA on an edge, at parameter t in [0, 1] from its vertex a to its vertex b.
 /// For a line t is linear in arc length; for a parabola t is linear in the position of the
-/// touching point along its segment site.
+/// touching point along its segment site. When the axis is a single point (a polygonised
+/// disk), `edge` is invalid and the point is that vertex.
 struct MaPoint {
   MaEdgeId edge;
   double t = 0.0;
@@ -140,7 +141,7 @@ class MedialAxis {
   /// MA -> boundary at a vertex: every distinct touching point of its maximal disk
   /// (>= 3 at a branch point).
   std::vector<BoundaryPoint> touching_points(MaVertexId v) const;
-  /// The two-way mapping: boundary -> MA -> the other side.
+  /// The two-way mapping: boundary -> MA -> the other side (none when the axis is one point).
   std::optional<BoundaryPoint> opposite(const BoundaryPoint& p) const;
 
   /// Self-check: radii equal the distance to the boundary (1e-9 relative), vertices inside the
