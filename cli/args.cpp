@@ -5,7 +5,8 @@
 
 namespace laytracks::cli {
 
-Args::Args(const std::vector<std::string>& argv, const std::set<std::string>& with_value,
+Args::Args(const std::vector<std::string>& argv,
+           const std::set<std::string>& with_value,
            const std::set<std::string>& flags) {
   for (std::size_t i = 0; i < argv.size(); ++i) {
     const std::string& a = argv[i];

@@ -20,7 +20,8 @@ class UsageError : public std::runtime_error {
 class Args {
  public:
   /// `with_value`: options followed by a value; `flags`: options without one.
-  Args(const std::vector<std::string>& argv, const std::set<std::string>& with_value,
+  Args(const std::vector<std::string>& argv,
+       const std::set<std::string>& with_value,
        const std::set<std::string>& flags);
 
   const std::vector<std::string>& positional() const { return positional_; }

@@ -16,7 +16,8 @@
 namespace laytracks::cli {
 
 const char* const kCheckLoopsHelp =
-    "usage: laytracks check-loops PART.json [--size W] [--json OUT.json] [--chord-tol T] [--quiet]\n"
+    "usage: laytracks check-loops PART.json [--size W] [--json OUT.json] [--chord-tol T] "
+    "[--quiet]\n"
     "\n"
     "Lays the rails (from the branch points' touching points, then the track rails of every\n"
     "corridor at width W) and reports every rail chain and how it ends: loop, free-edge,\n"
@@ -27,7 +28,8 @@ const char* const kCheckLoopsHelp =
     "\n"
     "  --size W        track width (default: the part's mesh.size, else 1/40 of its bounding-box\n"
     "                  diagonal)\n"
-    "  --json OUT.json {\"rails\":[{\"id\",\"start\",\"end\",\"closure_gap\",\"patches\"}],\"loops\",\n"
+    "  --json OUT.json "
+    "{\"rails\":[{\"id\",\"start\",\"end\",\"closure_gap\",\"patches\"}],\"loops\",\n"
     "                  \"max_closure_gap\",\"ok\",...}\n"
     "  --chord-tol T   sagitta bound for arcs\n"
     "  --quiet         print nothing but errors\n";
@@ -44,8 +46,8 @@ int run_check_loops(const std::vector<std::string>& argv) {
   const Part part = build_part(read_brep_json(args.positional()[0]), build_options);
   const std::vector<MedialAxis> axes = compute_medial_axes(part);
   CutGraphOptions options;
-  options.track_width = args.positive_number("--size").value_or(
-      part.mesh.size.value_or(part.bbox.diagonal() / 40.0));
+  options.track_width =
+      args.positive_number("--size").value_or(part.mesh.size.value_or(part.bbox.diagonal() / 40.0));
   const CutGraph graph = build_cut_graph(part, axes, options);
   const std::vector<std::string> problems = validate_cut_graph(part, axes, graph);
   const double seconds =
@@ -94,9 +96,10 @@ int run_check_loops(const std::vector<std::string>& argv) {
   if (!args.flag("--quiet")) {
     std::printf("%zu rail chains (%zu loops) through %zu rail points, track width %.6g, %.3f s\n",
                 graph.chains.size(), loops, graph.gverts.size(), options.track_width, seconds);
-    std::printf("%zu corridors, %zu tracks; %zu source rails deleted for narrow corridors, %zu "
-                "narrow corridors kept (small features)\n",
-                graph.corridor_count, graph.track_count, graph.deleted.size(), graph.narrow_kept);
+    std::printf(
+        "%zu corridors, %zu tracks; %zu source rails deleted for narrow corridors, %zu "
+        "narrow corridors kept (small features)\n",
+        graph.corridor_count, graph.track_count, graph.deleted.size(), graph.narrow_kept);
     std::printf("chain ends:\n");
     for (const auto& [end, n] : ends) std::printf("  %-15s %zu\n", end.c_str(), n);
     std::printf("largest loop closure gap %.3g (limit %.3g): %s\n", max_gap,

@@ -49,7 +49,8 @@ int run_draw(const std::vector<std::string>& argv) {
         part.mesh.size.value_or(part.bbox.diagonal() / 40.0));
   }
   const CutGraph graph = build_cut_graph(part, axes, options);
-  write_file_atomically(*out, [&](std::ostream& o) { write_rails_svg(o, part, axes, graph, stage); });
+  write_file_atomically(*out,
+                        [&](std::ostream& o) { write_rails_svg(o, part, axes, graph, stage); });
   return kOk;
 }
 

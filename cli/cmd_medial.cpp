@@ -14,12 +14,14 @@
 namespace laytracks::cli {
 
 const char* const kMedialHelp =
-    "usage: laytracks medial PART.json [--json OUT.json] [--svg OUT.svg] [--chord-tol T] [--quiet]\n"
+    "usage: laytracks medial PART.json [--json OUT.json] [--svg OUT.svg] [--chord-tol T] "
+    "[--quiet]\n"
     "\n"
     "Computes the medial axis of every patch of the part and prints, per patch, its vertices,\n"
     "edges, branch points and largest radius.\n"
     "\n"
-    "  --json OUT.json  write {\"patches\":[{\"name\",\"vertices\":[{\"xyz\",\"radius\",\"degree\"}],\n"
+    "  --json OUT.json  write "
+    "{\"patches\":[{\"name\",\"vertices\":[{\"xyz\",\"radius\",\"degree\"}],\n"
     "                   \"edges\":[[i,j]]}]}, coordinates in the part's 3D frame\n"
     "  --svg OUT.svg    draw each patch in its plane: boundary, axis coloured by radius,\n"
     "                   branch points in red\n"
@@ -40,7 +42,8 @@ int run_medial(const std::vector<std::string>& argv) {
 
   const auto progress = [&](std::size_t done, std::size_t total) {
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (!quiet && total > 1 && s > 1.0) std::cerr << "medial: patch " << done << "/" << total << "\r";
+    if (!quiet && total > 1 && s > 1.0)
+      std::cerr << "medial: patch " << done << "/" << total << "\r";
   };
   const std::vector<MedialAxis> axes = compute_medial_axes(part, progress);
   const double seconds =
@@ -60,8 +63,8 @@ int run_medial(const std::vector<std::string>& argv) {
       for (const auto& v : axes[p].vertices()) rmax = std::max(rmax, v.radius);
       branches += axes[p].branch_points().size();
       std::printf("%-24s %9zu %9zu %9zu %12.6g\n", part.patches[p].name.c_str(),
-                  axes[p].vertices().size(), axes[p].edges().size(),
-                  axes[p].branch_points().size(), rmax);
+                  axes[p].vertices().size(), axes[p].edges().size(), axes[p].branch_points().size(),
+                  rmax);
     }
     std::printf("%zu patches, %zu shells, %zu branch points, %.3f s\n", part.patches.size(),
                 part.shell_count, branches, seconds);

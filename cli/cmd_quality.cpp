@@ -37,9 +37,8 @@ int run_quality(const std::vector<std::string>& argv) {
   const MeshCheck check = check_mesh(part, mesh);
   const QualitySummary summary = summarize(part, mesh);
   if (const auto path = args.value("--json")) {
-    write_file_atomically(*path, [&](std::ostream& o) {
-      write_quality_json(o, summary, args.flag("--histograms"));
-    });
+    write_file_atomically(
+        *path, [&](std::ostream& o) { write_quality_json(o, summary, args.flag("--histograms")); });
   }
   if (!args.flag("--quiet")) {
     std::printf("%zu elements (%zu quads, %zu triangles), %zu nodes, %zu invalid\n",

@@ -139,7 +139,9 @@ void check_planarity(const BuildState& s,
 
 /// When the patch's own corners (the file's vertices) are planar and the via point of one of its
 /// arcs is not, names that arc: the arc, not the whole patch, is what the user must fix.
-void blame_off_plane_arc(const BuildState& s, std::size_t p, const std::vector<VertexId>& ids,
+void blame_off_plane_arc(const BuildState& s,
+                         std::size_t p,
+                         const std::vector<VertexId>& ids,
                          double tol) {
   std::vector<Vec3> corners;
   for (VertexId v : ids) {

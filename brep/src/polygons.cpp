@@ -115,7 +115,9 @@ std::string describe(const BuildState& s, std::size_t p, const Conflict& c) {
 }
 
 /// Every segment of the loops, in loop order, with its bounding box.
-void segment_boxes(const Loops2& loops, std::vector<SegmentRef>& segments, std::vector<Box2>& boxes) {
+void segment_boxes(const Loops2& loops,
+                   std::vector<SegmentRef>& segments,
+                   std::vector<Box2>& boxes) {
   for (std::size_t l = 0; l < loops.size(); ++l) {
     for (std::size_t i = 0; i < loops[l].size(); ++i) {
       segments.push_back({l, i});

@@ -43,8 +43,8 @@ int corner_turn(const Part& part, PatchId p, std::uint32_t loop, std::uint32_t i
   return t > 0.0 ? 1 : t < 0.0 ? -1 : 0;
 }
 
-GCutId GCutRegistry::find_or_add(EdgeId e, double t, std::vector<GCutVert>& gverts, double* gap,
-                                 bool* created) {
+GCutId GCutRegistry::find_or_add(
+    EdgeId e, double t, std::vector<GCutVert>& gverts, double* gap, bool* created) {
   const BrepEdge& edge = part_.edges[e.index()];
   const Vec3 a = part_.vertices[edge.a.index()].position;
   const Vec3 b = part_.vertices[edge.b.index()].position;

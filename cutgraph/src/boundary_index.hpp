@@ -55,8 +55,7 @@ class GCutRegistry {
   /// The G-CUT-VERT at parameter t of edge e (snapped to the edge's vertices within the
   /// tolerance), creating it if needed. `gap` receives the distance to an existing one that was
   /// reused (0 for a new one); `created` whether it is new.
-  GCutId find_or_add(EdgeId e, double t, std::vector<GCutVert>& gverts, double* gap,
-                     bool* created);
+  GCutId find_or_add(EdgeId e, double t, std::vector<GCutVert>& gverts, double* gap, bool* created);
   GCutId find_or_add_vertex(VertexId v, std::vector<GCutVert>& gverts, bool* created);
 
  private:

@@ -68,7 +68,8 @@ class Finder {
   void build_segs() {
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<double>> breaks;
     for (const CutVert& c : graph_.cuts) {
-      const double n = static_cast<double>(part_.patches[c.patch.index()].polygon.loops[c.at.loop].size());
+      const double n =
+          static_cast<double>(part_.patches[c.patch.index()].polygon.loops[c.at.loop].size());
       breaks[{c.patch.value, c.at.loop}].push_back(std::fmod(c.at.u(), n));
     }
     for (std::uint32_t p = 0; p < part_.patches.size(); ++p) {
@@ -173,7 +174,8 @@ class Finder {
     for (double u = cs.u0; u < cs.u1 - 1e-12;) {
       const double next = std::min(cs.u1, std::floor(u) + 1.0);
       const double mid = 0.5 * (u + next);
-      const std::uint32_t seg = static_cast<std::uint32_t>(static_cast<std::size_t>(std::floor(mid)) % n);
+      const std::uint32_t seg =
+          static_cast<std::uint32_t>(static_cast<std::size_t>(std::floor(mid)) % n);
       const double s = mid - std::floor(mid);
       const EdgeId e = index_.edge_at(cs.patch, cs.loop, seg);
       const double t = index_.edge_param(cs.patch, cs.loop, seg, s);
@@ -199,7 +201,8 @@ class Finder {
 
 }  // namespace
 
-Corridors find_corridors(const Part& part, const std::vector<MedialAxis>& axes,
+Corridors find_corridors(const Part& part,
+                         const std::vector<MedialAxis>& axes,
                          const CutGraph& graph) {
   return Finder(part, axes, graph).run();
 }
@@ -233,15 +236,18 @@ std::vector<CorridorPiece> corridor_pieces_impl(const Part& part,
   return c.segs;
 }
 
-std::vector<TrackSeed> track_seeds(const Part& part, const std::vector<MedialAxis>& axes,
-                                   const CutGraph& graph, double width) {
+std::vector<TrackSeed> track_seeds(const Part& part,
+                                   const std::vector<MedialAxis>& axes,
+                                   const CutGraph& graph,
+                                   double width) {
   const Corridors corridors = find_corridors(part, axes, graph);
   // The longest CUT-SEG of each corridor (the first one on ties: deterministic).
   std::vector<std::size_t> master(corridors.count, SIZE_MAX);
   for (std::size_t i = 0; i < corridors.segs.size(); ++i) {
     // Lengths equal within rounding are ties, kept by the first: the same in every pose.
     std::size_t& m = master[corridors.segs[i].corridor];
-    if (m == SIZE_MAX || corridors.segs[i].length > corridors.segs[m].length * (1.0 + kHalfMargin)) m = i;
+    if (m == SIZE_MAX || corridors.segs[i].length > corridors.segs[m].length * (1.0 + kHalfMargin))
+      m = i;
   }
   std::vector<TrackSeed> seeds;
   for (std::size_t m : master) {
@@ -285,7 +291,8 @@ std::vector<TrackSeed> track_seeds(const Part& part, const std::vector<MedialAxi
 
 namespace laytracks {
 
-std::vector<CorridorPiece> corridor_pieces(const Part& part, const std::vector<MedialAxis>& axes,
+std::vector<CorridorPiece> corridor_pieces(const Part& part,
+                                           const std::vector<MedialAxis>& axes,
                                            const CutGraph& graph) {
   return cutgraph_detail::corridor_pieces_impl(part, axes, graph);
 }

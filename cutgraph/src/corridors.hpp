@@ -16,7 +16,8 @@ struct Corridors {
 
 /// The CUT-SEGs of every loop, grouped into corridors: two CUT-SEGs are in one corridor when
 /// one maps onto the other across the medial axis, or when they share a B-Rep edge.
-Corridors find_corridors(const Part& part, const std::vector<MedialAxis>& axes,
+Corridors find_corridors(const Part& part,
+                         const std::vector<MedialAxis>& axes,
                          const CutGraph& graph);
 
 /// The CUT-SEGs with their corridors and the MA points at their ends (corridor_pieces()).
@@ -32,7 +33,9 @@ struct TrackSeed {
 
 /// Uniform mode (Eq. 1): in each corridor, round(L / w) tracks (at least one), L the length of
 /// its longest CUT-SEG; the track rails start at equal spacing along that CUT-SEG.
-std::vector<TrackSeed> track_seeds(const Part& part, const std::vector<MedialAxis>& axes,
-                                   const CutGraph& graph, double width);
+std::vector<TrackSeed> track_seeds(const Part& part,
+                                   const std::vector<MedialAxis>& axes,
+                                   const CutGraph& graph,
+                                   double width);
 
 }  // namespace laytracks::cutgraph_detail

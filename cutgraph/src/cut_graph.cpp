@@ -22,14 +22,22 @@ using cutgraph_detail::GCutRegistry;
 
 const char* to_string(RailEnd end) {
   switch (end) {
-    case RailEnd::Loop: return "loop";
-    case RailEnd::FreeEdge: return "free-edge";
-    case RailEnd::ConcaveVertex: return "concave-vertex";
-    case RailEnd::BranchPoint: return "branch-point";
-    case RailEnd::Junction: return "junction";
-    case RailEnd::ConvexVertex: return "convex-vertex";
-    case RailEnd::RoundCorner: return "round-corner";
-    case RailEnd::Lost: return "lost";
+    case RailEnd::Loop:
+      return "loop";
+    case RailEnd::FreeEdge:
+      return "free-edge";
+    case RailEnd::ConcaveVertex:
+      return "concave-vertex";
+    case RailEnd::BranchPoint:
+      return "branch-point";
+    case RailEnd::Junction:
+      return "junction";
+    case RailEnd::ConvexVertex:
+      return "convex-vertex";
+    case RailEnd::RoundCorner:
+      return "round-corner";
+    case RailEnd::Lost:
+      return "lost";
   }
   return "lost";
 }
@@ -38,7 +46,9 @@ namespace cutgraph_detail {
 
 /// Splits the rail network into chains: maximal paths through points where exactly two rail
 /// pieces meet; what is left are loops.
-void extract_chains(const Part& part, const BoundaryIndex& index, const RailLayer& layer,
+void extract_chains(const Part& part,
+                    const BoundaryIndex& index,
+                    const RailLayer& layer,
                     CutGraph& g) {
   std::map<std::uint32_t, std::vector<std::size_t>> at;  // node -> link indices
   const auto& links = layer.links();
@@ -131,12 +141,14 @@ void extract_chains(const Part& part, const BoundaryIndex& index, const RailLaye
 
 }  // namespace cutgraph_detail
 
-CutGraph build_cut_graph(const Part& part, const std::vector<MedialAxis>& axes,
+CutGraph build_cut_graph(const Part& part,
+                         const std::vector<MedialAxis>& axes,
                          const CutGraphOptions& options) {
   CutGraph graph;
   std::vector<Vec3> suppressed;
   if (options.track_width > 0.0 && options.narrow_fraction > 0.0) {
-    cutgraph_detail::remove_narrow_corridors(part, axes, options.narrow_fraction * options.track_width,
+    cutgraph_detail::remove_narrow_corridors(part, axes,
+                                             options.narrow_fraction * options.track_width,
                                              suppressed, graph.deleted, graph.narrow_kept);
   }
   cutgraph_detail::RailLayer layer(part, axes, graph);

@@ -23,7 +23,8 @@ struct Round {
   std::vector<RailLayer::Link> links;
 };
 
-Round lay_round(const Part& part, const std::vector<MedialAxis>& axes,
+Round lay_round(const Part& part,
+                const std::vector<MedialAxis>& axes,
                 const std::vector<Vec3>& suppressed) {
   Round r;
   RailLayer layer(part, axes, r.graph);
@@ -45,9 +46,12 @@ bool at_corner(const Part& part, const BoundaryIndex& index, const GCutVert& g) 
 
 }  // namespace
 
-void remove_narrow_corridors(const Part& part, const std::vector<MedialAxis>& axes,
-                             double min_width, std::vector<Vec3>& suppressed,
-                             std::vector<DeletedRail>& deleted, std::size_t& kept) {
+void remove_narrow_corridors(const Part& part,
+                             const std::vector<MedialAxis>& axes,
+                             double min_width,
+                             std::vector<Vec3>& suppressed,
+                             std::vector<DeletedRail>& deleted,
+                             std::size_t& kept) {
   const BoundaryIndex index(part);
   // Each round deletes one rail (one connected set of source rails), then lays again: the
   // narrowest corridors first, so that a group of adjacent narrow corridors merges until the
@@ -59,7 +63,8 @@ void remove_narrow_corridors(const Part& part, const std::vector<MedialAxis>& ax
     UnionFind uf(g.gverts.size());
     for (const auto& l : r.links) {
       if ((l.from & kMaNodeFlag) || (l.to & kMaNodeFlag)) continue;
-      if (at_corner(part, index, g.gverts[l.from]) || at_corner(part, index, g.gverts[l.to])) continue;
+      if (at_corner(part, index, g.gverts[l.from]) || at_corner(part, index, g.gverts[l.to]))
+        continue;
       uf.unite(l.from, l.to);
     }
     // Break points of the CUT-SEGs: the G-CUT-VERT there, if any.
@@ -80,7 +85,8 @@ void remove_narrow_corridors(const Part& part, const std::vector<MedialAxis>& ax
         if (it == cut_at.end()) {
           // A corner: a convex one makes the corridor a small feature, which stays.
           const auto n = part.patches[c.patch.index()].polygon.loops[c.loop].size();
-          const auto corner = static_cast<std::uint32_t>(std::llround(u) % static_cast<long long>(n));
+          const auto corner =
+              static_cast<std::uint32_t>(std::llround(u) % static_cast<long long>(n));
           if (corner_turn(part, c.patch, c.loop, corner) > 0) small_feature.insert(c.corridor);
           continue;
         }
@@ -135,8 +141,8 @@ void remove_narrow_corridors(const Part& part, const std::vector<MedialAxis>& ax
         const std::size_t set = uf.find(b);
         if (!sources_of.count(set)) continue;
         const auto node = branch_of.find(set);
-        const std::uint32_t unit = node != branch_of.end() ? node->second
-                                                           : static_cast<std::uint32_t>(set);
+        const std::uint32_t unit =
+            node != branch_of.end() ? node->second : static_cast<std::uint32_t>(set);
         auto& u = units[unit];
         if (std::find(u.begin(), u.end(), set) == u.end()) u.push_back(set);
       }

@@ -11,8 +11,11 @@ namespace laytracks::cutgraph_detail {
 /// `min_width` except small features (a corridor bounded by a convex corner) and corridors
 /// whose only deletable rail is the last one at a concave vertex (counted in `kept`).
 /// `suppressed` receives the positions of the deleted source points, `deleted` a record each.
-void remove_narrow_corridors(const Part& part, const std::vector<MedialAxis>& axes,
-                             double min_width, std::vector<Vec3>& suppressed,
-                             std::vector<DeletedRail>& deleted, std::size_t& kept);
+void remove_narrow_corridors(const Part& part,
+                             const std::vector<MedialAxis>& axes,
+                             double min_width,
+                             std::vector<Vec3>& suppressed,
+                             std::vector<DeletedRail>& deleted,
+                             std::size_t& kept);
 
 }  // namespace laytracks::cutgraph_detail

@@ -24,7 +24,10 @@ constexpr std::uint32_t kMaNodeFlag = 1u << 31;
 class RailLayer {
  public:
   RailLayer(const Part& part, const std::vector<MedialAxis>& axes, CutGraph& graph)
-      : part_(part), axes_(axes), g_(graph), index_(part),
+      : part_(part),
+        axes_(axes),
+        g_(graph),
+        index_(part),
         registry_(part, kSamePointRel * part.size) {}
 
   /// Registers the touching points of every branch point as sources and lays their rails.
@@ -102,7 +105,8 @@ class RailLayer {
     const GCutVert& g = g_.gverts[id.index()];
     std::vector<std::pair<PatchId, LoopPoint>> out;
     if (g.vertex) {
-      for (const auto& c : index_.corners_of(*g.vertex)) out.push_back({c.patch, {c.loop, c.index, 0.0}});
+      for (const auto& c : index_.corners_of(*g.vertex))
+        out.push_back({c.patch, {c.loop, c.index, 0.0}});
       return out;
     }
     for (const auto& s : index_.segments_of(g.edge)) {

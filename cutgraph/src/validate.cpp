@@ -38,13 +38,15 @@ bool cross_inside(Vec2 a, Vec2 b, Vec2 c, Vec2 d, double eps) {
 
 }  // namespace
 
-std::vector<std::string> validate_cut_graph(const Part& part, const std::vector<MedialAxis>& axes,
+std::vector<std::string> validate_cut_graph(const Part& part,
+                                            const std::vector<MedialAxis>& axes,
                                             const CutGraph& graph) {
   std::vector<std::string> problems = graph.problems;
   const double tol = 1e-7 * part.size;
   // Every G-CUT-VERT on an edge has an image in every patch of the edge, at the same 3D point.
   std::map<std::uint32_t, std::vector<CutVertId>> images;
-  for (std::size_t i = 0; i < graph.cuts.size(); ++i) images[graph.cuts[i].g.value].push_back(CutVertId(i));
+  for (std::size_t i = 0; i < graph.cuts.size(); ++i)
+    images[graph.cuts[i].g.value].push_back(CutVertId(i));
   for (std::size_t gi = 0; gi < graph.gverts.size(); ++gi) {
     const GCutVert& g = graph.gverts[gi];
     const auto& list = images[static_cast<std::uint32_t>(gi)];
@@ -70,8 +72,10 @@ std::vector<std::string> validate_cut_graph(const Part& part, const std::vector<
     const MedialAxis& ma = axes[m.patch.index()];
     const MaPoint on = m.point.edge.valid() ? ma.point_on_edge(m.point.edge, m.point.t)
                                             : MaPoint{{}, 0.0, ma.vertices().front().position, 0.0};
-    if (m.point.t < -1e-12 || m.point.t > 1.0 + 1e-12 || distance(on.position, m.point.position) > tol) {
-      problems.push_back("an MA-CUT-VERT on " + part.patch_label(m.patch) + " lies off its MA edge");
+    if (m.point.t < -1e-12 || m.point.t > 1.0 + 1e-12 ||
+        distance(on.position, m.point.position) > tol) {
+      problems.push_back("an MA-CUT-VERT on " + part.patch_label(m.patch) +
+                         " lies off its MA edge");
     }
     // Rails into the centre of a polygonised arc are longer than its radius by the sagitta.
     if (std::fabs(distance(c.position, m.point.position) - m.point.radius) > tol + part.chord_tol) {
@@ -94,7 +98,8 @@ std::vector<std::string> validate_cut_graph(const Part& part, const std::vector<
     std::size_t crossings = 0;
     for (std::size_t i = 0; i < r.size(); ++i) {
       const double hi = std::max(r[i].first.x, r[i].second.x);
-      for (std::size_t j = i + 1; j < r.size() && std::min(r[j].first.x, r[j].second.x) <= hi; ++j) {
+      for (std::size_t j = i + 1; j < r.size() && std::min(r[j].first.x, r[j].second.x) <= hi;
+           ++j) {
         if (cross_inside(r[i].first, r[i].second, r[j].first, r[j].second, eps)) ++crossings;
       }
     }
@@ -119,8 +124,10 @@ std::vector<std::string> validate_cut_graph(const Part& part, const std::vector<
   }
   for (const CutVert& c : graph.cuts) {
     // A CUT-VERT at a corner ends its rail there (fan or zero length).
-    const double n = static_cast<double>(part.patches[c.patch.index()].polygon.loops[c.at.loop].size());
-    if (c.at.s == 0.0 && cutgraph_detail::corner_turn(part, c.patch, c.at.loop, c.at.segment) != 0) {
+    const double n =
+        static_cast<double>(part.patches[c.patch.index()].polygon.loops[c.at.loop].size());
+    if (c.at.s == 0.0 &&
+        cutgraph_detail::corner_turn(part, c.patch, c.at.loop, c.at.segment) != 0) {
       railed[key(c.patch, c.at.loop, std::fmod(c.at.u(), n))] = true;
     }
   }
@@ -130,8 +137,9 @@ std::vector<std::string> validate_cut_graph(const Part& part, const std::vector<
     for (double u : {piece.u0, piece.u1}) {
       const double frac = u - std::floor(u);
       const bool corner = frac == 0.0;
-      if (corner && cutgraph_detail::corner_turn(part, piece.patch, piece.loop,
-                                                  static_cast<std::uint32_t>(static_cast<std::size_t>(u) % n)) != 0) {
+      if (corner && cutgraph_detail::corner_turn(
+                        part, piece.patch, piece.loop,
+                        static_cast<std::uint32_t>(static_cast<std::size_t>(u) % n)) != 0) {
         continue;
       }
       if (!railed.count(key(piece.patch, piece.loop, u))) {

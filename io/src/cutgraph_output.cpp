@@ -34,15 +34,19 @@ std::vector<Vec2> loop_piece(const std::vector<Vec2>& loop, double u0, double u1
 
 }  // namespace
 
-void write_rails_svg(std::ostream& out, const Part& part, const std::vector<MedialAxis>& axes,
-                     const CutGraph& graph, const std::string& title) {
+void write_rails_svg(std::ostream& out,
+                     const Part& part,
+                     const std::vector<MedialAxis>& axes,
+                     const CutGraph& graph,
+                     const std::string& title) {
   const std::size_t n = part.patches.size();
   const std::size_t cols = std::max<std::size_t>(
       1, std::min<std::size_t>(n, static_cast<std::size_t>(std::ceil(std::sqrt(double(n))))));
   const std::size_t rows = (n + cols - 1) / cols;
   const double cell = n == 1 ? 640.0 : 360.0;
   const double head = 24.0;
-  SvgDocument svg(cell * static_cast<double>(cols), (head + cell) * static_cast<double>(rows) + 30.0);
+  SvgDocument svg(cell * static_cast<double>(cols),
+                  (head + cell) * static_cast<double>(rows) + 30.0);
   std::vector<Panel> panels;
   for (std::size_t p = 0; p < n; ++p) {
     Box2 box;

@@ -146,7 +146,8 @@ class Extractor {
       MaVertex& mv = g.vertices[id];
       mv.sites = s;
       double r = INFINITY;
-      for (const auto& site : s) r = std::min(r, medial_detail::site_distance(poly_, site, mv.position));
+      for (const auto& site : s)
+        r = std::min(r, medial_detail::site_distance(poly_, site, mv.position));
       mv.radius = r;
       for (const auto& site : s) {
         if (site.kind == BoundarySite::Kind::Corner && vd.turn[site.loop][site.index] > 0 &&

@@ -156,7 +156,8 @@ std::vector<Vec2> MedialAxis::sample_edge(MaEdgeId id, double max_chord) const {
   const Vec2 b = vertices_[e.b.index()].position;
   if (e.kind == MaEdgeKind::Line || !(max_chord > 0.0)) return {a, b};
   // Refine until every chord is short enough (parabolic arcs are gently curved).
-  std::size_t n = std::max<std::size_t>(2, static_cast<std::size_t>(std::ceil(distance(a, b) / max_chord)));
+  std::size_t n =
+      std::max<std::size_t>(2, static_cast<std::size_t>(std::ceil(distance(a, b) / max_chord)));
   n = std::min<std::size_t>(n, 4096);
   std::vector<Vec2> pts;
   pts.reserve(n + 1);
@@ -233,7 +234,8 @@ std::optional<MaPoint> MedialAxis::project(const BoundaryPoint& bp) const {
   return best;
 }
 
-std::optional<MaPoint> MedialAxis::project_corner(std::uint32_t loop, std::uint32_t vertex,
+std::optional<MaPoint> MedialAxis::project_corner(std::uint32_t loop,
+                                                  std::uint32_t vertex,
                                                   double w) const {
   const auto& l = polygon_.loops[loop];
   const std::uint32_t n = static_cast<std::uint32_t>(l.size());
@@ -322,8 +324,8 @@ std::vector<std::string> MedialAxis::validate() const {
         const double d = site_distance(polygon_, s, v.position);
         if (std::fabs(d - v.radius) > tol) {
           problems.push_back("edge " + std::to_string(i) + ": vertex " +
-                             std::to_string(end.index()) + " at " + fmt(v.position) +
-                             " is " + std::to_string(d) + " from a site, but its radius is " +
+                             std::to_string(end.index()) + " at " + fmt(v.position) + " is " +
+                             std::to_string(d) + " from a site, but its radius is " +
                              std::to_string(v.radius));
         }
       }
@@ -333,7 +335,8 @@ std::vector<std::string> MedialAxis::validate() const {
     const Vec2 b = vertices_[e.b.index()].position;
     if (distance(a, b) > 1e3 * tol) {
       const MaPoint mid = point_on_edge(MaEdgeId(i), 0.5);
-      const Vec2 dir = point_on_edge(MaEdgeId(i), 0.51).position - point_on_edge(MaEdgeId(i), 0.49).position;
+      const Vec2 dir =
+          point_on_edge(MaEdgeId(i), 0.51).position - point_on_edge(MaEdgeId(i), 0.49).position;
       const Vec2 fl = site_foot(polygon_, e.left, mid.position);
       const Vec2 fr = site_foot(polygon_, e.right, mid.position);
       if (cross(dir, fl - mid.position) < 0.0 || cross(dir, fr - mid.position) > 0.0) {
@@ -342,8 +345,10 @@ std::vector<std::string> MedialAxis::validate() const {
     }
   }
   std::size_t step = 1;
-  const double pairs = static_cast<double>(vertices_.size()) * static_cast<double>(polygon_.segment_count());
-  if (pairs > kBruteForceBudget) step = static_cast<std::size_t>(std::ceil(pairs / kBruteForceBudget));
+  const double pairs =
+      static_cast<double>(vertices_.size()) * static_cast<double>(polygon_.segment_count());
+  if (pairs > kBruteForceBudget)
+    step = static_cast<std::size_t>(std::ceil(pairs / kBruteForceBudget));
   for (std::size_t i = 0; i < vertices_.size(); ++i) {
     const MaVertex& v = vertices_[i];
     if (degree[i] != v.degree) {

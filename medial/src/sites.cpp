@@ -7,7 +7,8 @@
 namespace laytracks::medial_detail {
 
 Vec2 inward_normal(const Polygon2& poly, const BoundarySite& segment) {
-  const Vec2 d = seg_end(poly, segment.loop, segment.index) - seg_start(poly, segment.loop, segment.index);
+  const Vec2 d =
+      seg_end(poly, segment.loop, segment.index) - seg_start(poly, segment.loop, segment.index);
   const double n = norm(d);
   return (1.0 / n) * perp(d);
 }
@@ -172,8 +173,9 @@ std::vector<double> quadratic_roots(double a, double b, double c) {
 std::vector<Vec2> closed_form_centres(const std::array<Constraint, 3>& cs) {
   std::array<Constraint, 3> c = cs;
   // Points first, then lines.
-  std::stable_sort(c.begin(), c.end(),
-                   [](const Constraint& a, const Constraint& b) { return !a.is_line && b.is_line; });
+  std::stable_sort(c.begin(), c.end(), [](const Constraint& a, const Constraint& b) {
+    return !a.is_line && b.is_line;
+  });
   const int points = static_cast<int>(!c[0].is_line) + !c[1].is_line + !c[2].is_line;
   std::vector<Vec2> out;
   if (points == 3) {  // circumcentre
@@ -187,8 +189,8 @@ std::vector<Vec2> closed_form_centres(const std::array<Constraint, 3>& cs) {
     return out;
   }
   if (points == 0) {  // three lines: n_i . x - r = n_i . a_i
-    const double m[3][3] = {{c[0].n.x, c[0].n.y, -1.0}, {c[1].n.x, c[1].n.y, -1.0},
-                            {c[2].n.x, c[2].n.y, -1.0}};
+    const double m[3][3] = {
+        {c[0].n.x, c[0].n.y, -1.0}, {c[1].n.x, c[1].n.y, -1.0}, {c[2].n.x, c[2].n.y, -1.0}};
     const double rhs[3] = {dot(c[0].n, c[0].a), dot(c[1].n, c[1].a), dot(c[2].n, c[2].a)};
     auto det3 = [](const double a[3][3]) {
       return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
@@ -256,9 +258,7 @@ std::vector<double> bisector_heights(Vec2 p, Vec2 m, double c0, const Constraint
 }
 
 /// The point where the circle centred at x touches a constraint.
-Vec2 touch(const Constraint& c, Vec2 x) {
-  return c.is_line ? x - dot(x - c.a, c.n) * c.n : c.a;
-}
+Vec2 touch(const Constraint& c, Vec2 x) { return c.is_line ? x - dot(x - c.a, c.n) * c.n : c.a; }
 
 }  // namespace
 
@@ -277,8 +277,8 @@ Vec2 refine_vertex(const Polygon2& poly,
     for (const auto& s : sites) adjacent += is_endpoint_of(poly, c, s) ? 1 : 0;
     if (adjacent == 2) return poly.loops[c.loop][c.index];
   }
-  const std::array<Constraint, 3> cs = {constraint_of(poly, sites[0]), constraint_of(poly, sites[1]),
-                                        constraint_of(poly, sites[2])};
+  const std::array<Constraint, 3> cs = {
+      constraint_of(poly, sites[0]), constraint_of(poly, sites[1]), constraint_of(poly, sites[2])};
   std::vector<Vec2> candidates;
   // A segment with one of its own end points: the vertex lies on the segment's normal at that
   // end point, at the height where the disk touches the third site. Two segments meeting end

@@ -26,8 +26,9 @@ namespace laytracks::medial_detail {
 namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Gt = CGAL::Segment_Delaunay_graph_filtered_traits_without_intersections_2<
-    K, CGAL::Field_with_sqrt_tag>;
+using Gt =
+    CGAL::Segment_Delaunay_graph_filtered_traits_without_intersections_2<K,
+                                                                         CGAL::Field_with_sqrt_tag>;
 using Sdg = CGAL::Segment_Delaunay_graph_2<Gt>;
 using Point = K::Point_2;
 
@@ -66,7 +67,8 @@ class Builder {
     std::vector<std::size_t> order(points.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     using Pmap = CGAL::Pointer_property_map<Point>::const_type;
-    CGAL::Spatial_sort_traits_adapter_2<K, Pmap> sort_traits(CGAL::make_property_map(std::as_const(points)));
+    CGAL::Spatial_sort_traits_adapter_2<K, Pmap> sort_traits(
+        CGAL::make_property_map(std::as_const(points)));
     CGAL::spatial_sort(order.begin(), order.end(), sort_traits);
     std::vector<Sdg::Vertex_handle> handles(points.size());
     Sdg::Vertex_handle hint;
@@ -176,9 +178,12 @@ class Builder {
   }
 
   /// Whether a bounded Voronoi edge belongs to the medial axis.
-  bool is_medial(const VoronoiEdge& ve, const Sdg::Edge& e,
+  bool is_medial(const VoronoiEdge& ve,
+                 const Sdg::Edge& e,
                  const std::vector<std::vector<std::int8_t>>& turn) const {
-    const auto is_corner = [](const BoundarySite& s) { return s.kind == BoundarySite::Kind::Corner; };
+    const auto is_corner = [](const BoundarySite& s) {
+      return s.kind == BoundarySite::Kind::Corner;
+    };
     const auto own_end = [&](const BoundarySite& c, const BoundarySite& s) {
       if (!is_corner(c) || is_corner(s) || c.loop != s.loop) return false;
       const std::size_t n = polygon_.loops[c.loop].size();

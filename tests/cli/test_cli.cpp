@@ -1,14 +1,14 @@
 // The laytracks executable, run as a user runs it: exit statuses, messages, files written or
 // not, and byte-identical output from run to run.
-#include <catch2/catch.hpp>
+#include <sys/wait.h>
 
 #include <array>
+#include <catch2/catch.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <sys/wait.h>
 
 #include "test_support.hpp"
 
@@ -90,9 +90,9 @@ TEST_CASE("medial writes JSON and SVG for a sample part", "[cli]") {
 TEST_CASE("output is byte-identical from run to run", "[cli][determinism]") {
   const fs::path d = fresh_dir("determinism");
   for (const char* name : {"a", "b"}) {
-    const Run r = run("medial " + q(samples_dir() + "/tray_ribs.json") + " --quiet --json " +
-                      q(d / (std::string(name) + ".json")) + " --svg " +
-                      q(d / (std::string(name) + ".svg")));
+    const Run r =
+        run("medial " + q(samples_dir() + "/tray_ribs.json") + " --quiet --json " +
+            q(d / (std::string(name) + ".json")) + " --svg " + q(d / (std::string(name) + ".svg")));
     REQUIRE(r.status == 0);
     CHECK(r.out.empty());
   }
@@ -135,11 +135,12 @@ TEST_CASE("command-line mistakes exit with status 2 and say what is wrong", "[cl
     std::string args;
     std::string message;
   };
-  for (const Case& c : {Case{"frobnicate", "unknown command \"frobnicate\""},
-                        Case{"medial", "medial needs exactly one PART.json"},
-                        Case{"medial " + part + " --chord-tol -1", "--chord-tol needs a positive number"},
-                        Case{"medial " + part + " --colour red", "unknown option --colour"},
-                        Case{"medial " + part + " --json", "option --json needs a value"}}) {
+  for (const Case& c :
+       {Case{"frobnicate", "unknown command \"frobnicate\""},
+        Case{"medial", "medial needs exactly one PART.json"},
+        Case{"medial " + part + " --chord-tol -1", "--chord-tol needs a positive number"},
+        Case{"medial " + part + " --colour red", "unknown option --colour"},
+        Case{"medial " + part + " --json", "option --json needs a value"}}) {
     CAPTURE(c.args);
     const Run r = run(c.args);
     CHECK(r.status == 2);
@@ -184,8 +185,8 @@ TEST_CASE("quality rates a Gmsh mesh of a part: quads valid, triangles refused",
            "Point(4)={0,4,0,0.5}; Line(1)={1,2}; Line(2)={2,3}; Line(3)={3,4}; Line(4)={4,1};\n"
            "Curve Loop(1)={1,2,3,4}; Plane Surface(1)={1}; Mesh.Algorithm=6;\n"
         << (recombine ? "Mesh.RecombineAll=1; Mesh.RecombinationAlgorithm=1;\n" : "");
-    const std::string gmsh = "gmsh " + q(d / "r.geo") + " -2 -format msh41 -o " + q(d / "r.msh") +
-                             " > /dev/null 2>&1";
+    const std::string gmsh =
+        "gmsh " + q(d / "r.geo") + " -2 -format msh41 -o " + q(d / "r.msh") + " > /dev/null 2>&1";
     REQUIRE(std::system(gmsh.c_str()) == 0);
     const Run r = run("quality " + q(laytracks::test::cases_dir() + "/rect_10x4.json") + " " +
                       q(d / "r.msh") + " --json " + q(d / "q.json"));

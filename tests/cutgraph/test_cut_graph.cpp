@@ -1,7 +1,6 @@
 // Rails across patches (Algorithm II), corridors and track rails, on the test parts.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
 
@@ -60,8 +59,7 @@ RawPart hex_prism() {
 
 }  // namespace
 
-TEST_CASE("closed cube: rails through the edge midpoints, loops round every corner",
-          "[cutgraph]") {
+TEST_CASE("closed cube: rails through the edge midpoints, loops round every corner", "[cutgraph]") {
   const Laid l = lay(read_brep_json(cases_dir() + "/closed_cube.json"), 1.0);
   CHECK(validate_cut_graph(l.part, l.axes, l.graph).empty());
   // The 12 edge midpoints are the sources; each source chain joins two face centres.
@@ -107,8 +105,14 @@ TEST_CASE("the validator catches crossing rails, MA points off the axis and miss
     for (std::size_t i = 0; i < g.segments.size(); ++i) {
       const Vec2 c = g.cuts[g.segments[i].cut.index()].position;
       const MaCutVert& m = g.macuts[g.segments[i].ma.index()];
-      if (m.branch || std::fabs(c.y - g.cuts[g.segments[0].cut.index()].position.y) > 1e-9) continue;
-      if (a == SIZE_MAX) a = i; else if (std::fabs(c.x - g.cuts[g.segments[a].cut.index()].position.x) > 1.0) { b = i; break; }
+      if (m.branch || std::fabs(c.y - g.cuts[g.segments[0].cut.index()].position.y) > 1e-9)
+        continue;
+      if (a == SIZE_MAX)
+        a = i;
+      else if (std::fabs(c.x - g.cuts[g.segments[a].cut.index()].position.x) > 1.0) {
+        b = i;
+        break;
+      }
     }
     REQUIRE(b != SIZE_MAX);
     std::swap(g.segments[a].ma, g.segments[b].ma);
@@ -124,14 +128,14 @@ TEST_CASE("the validator catches crossing rails, MA points off the axis and miss
   }
 }
 
-TEST_CASE("a round plate: its axis is one point, and every rail ends at the centre",
-          "[cutgraph]") {
+TEST_CASE("a round plate: its axis is one point, and every rail ends at the centre", "[cutgraph]") {
   RawPart raw;
   raw.source = "disk";
   for (int i = 0; i < 3; ++i) {
     const double a = 2.0 * M_PI * i / 3.0;
     raw.vertices.push_back({10.0 * std::cos(a), 10.0 * std::sin(a), 0.0});
-    raw.arcs.push_back({i, (i + 1) % 3, {10.0 * std::cos(a + M_PI / 3.0), 10.0 * std::sin(a + M_PI / 3.0), 0.0}});
+    raw.arcs.push_back(
+        {i, (i + 1) % 3, {10.0 * std::cos(a + M_PI / 3.0), 10.0 * std::sin(a + M_PI / 3.0), 0.0}});
   }
   raw.patches.push_back({std::string("disk"), {{0, 1, 2}}});
   const Laid l = lay(raw, 1.0);
@@ -192,7 +196,8 @@ TEST_CASE("L-shape: a rail runs from the branch point into the concave corner", 
   CHECK(ends(l.graph).at(RailEnd::ConcaveVertex) >= 1);
 }
 
-TEST_CASE("two close branch points: the narrow corridor between them is removed", "[cutgraph][narrow]") {
+TEST_CASE("two close branch points: the narrow corridor between them is removed",
+          "[cutgraph][narrow]") {
   RawPart raw;
   raw.vertices = {{0, 0, 0}, {4.2, 0, 0}, {4.2, 4, 0}, {0, 4, 0}};
   raw.patches.push_back({std::string("plate"), {{0, 1, 2, 3}}});
@@ -255,8 +260,8 @@ TEST_CASE("rotated and mirrored parts give the same rails", "[cutgraph][metamorp
     const Part part = build_part(raw);
     const double w = part.mesh.size.value_or(part.bbox.diagonal() / 40.0);
     const Laid base = lay(raw, w);
-    for (const Transform& t : {rotation({1, 2, 3}, 0.7), mirror_x(),
-                               compose(scaling(1e3), rotation({0, 1, 1}, 2.0))}) {
+    for (const Transform& t :
+         {rotation({1, 2, 3}, 0.7), mirror_x(), compose(scaling(1e3), rotation({0, 1, 1}, 2.0))}) {
       const double k = norm(t.apply({1, 0, 0}) - t.apply({0, 0, 0}));
       const Laid moved = lay(transformed(raw, t), k * w);
       CHECK(moved.graph.gverts.size() == base.graph.gverts.size());

@@ -1,6 +1,5 @@
 // Output files are written atomically: all or nothing, and an old file survives a failure.
 #include <catch2/catch.hpp>
-
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -28,7 +27,8 @@ fs::path fresh_dir(const std::string& name) {
 }
 
 std::size_t entries(const fs::path& d) {
-  return static_cast<std::size_t>(std::distance(fs::directory_iterator(d), fs::directory_iterator()));
+  return static_cast<std::size_t>(
+      std::distance(fs::directory_iterator(d), fs::directory_iterator()));
 }
 
 }  // namespace
@@ -59,15 +59,14 @@ TEST_CASE("a failing writer leaves the old file as it was and no temporary", "[i
 TEST_CASE("a failing writer creates no file where there was none", "[io][atomic]") {
   const fs::path d = fresh_dir("atomic-none");
   const fs::path f = d / "out.txt";
-  CHECK_THROWS(write_file_atomically(f.string(), [](std::ostream&) {
-    throw laytracks::Error("refused");
-  }));
+  CHECK_THROWS(
+      write_file_atomically(f.string(), [](std::ostream&) { throw laytracks::Error("refused"); }));
   CHECK_FALSE(fs::exists(f));
   CHECK(entries(d) == 0);
 }
 
 TEST_CASE("an unwritable folder gives an error naming the path", "[io][atomic]") {
-  CHECK_THROWS_WITH(
-      write_file_atomically("/nonexistent-folder-laytracks/out.txt", [](std::ostream& o) { o << 1; }),
-      Catch::Contains("/nonexistent-folder-laytracks/out.txt"));
+  CHECK_THROWS_WITH(write_file_atomically("/nonexistent-folder-laytracks/out.txt",
+                                          [](std::ostream& o) { o << 1; }),
+                    Catch::Contains("/nonexistent-folder-laytracks/out.txt"));
 }

@@ -386,7 +386,8 @@ TEST_CASE("patches must be a non-empty array of objects with loops", "[io][brep_
         "part.json:2:25: expected an array of vertex indices for patches[0].loops[0], found 0");
 }
 
-TEST_CASE("vertex indices are JSON integers from 0 to the vertex count minus 1", "[io][brep_json][errors]") {
+TEST_CASE("vertex indices are JSON integers from 0 to the vertex count minus 1",
+          "[io][brep_json][errors]") {
   const std::string head = "{\"laytracks\": \"brep/1\", \"vertices\": [[0, 0, 0], [1, 0, 0]],\n";
   const auto loop = [&](const std::string& indices) {
     return error_of(head + " \"patches\": [{\"loops\": [[0, 1],\n   [" + indices + "]]}]}");

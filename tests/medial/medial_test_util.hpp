@@ -18,8 +18,8 @@ inline Polygon2 polygon(std::vector<std::vector<Vec2>> loops) {
 }
 
 /// A regular n-gon of radius r about c; counter-clockwise unless `clockwise`.
-inline std::vector<Vec2> regular(std::size_t n, double r, Vec2 c = {}, bool clockwise = false,
-                                 double phase = 0.0) {
+inline std::vector<Vec2> regular(
+    std::size_t n, double r, Vec2 c = {}, bool clockwise = false, double phase = 0.0) {
   std::vector<Vec2> pts;
   for (std::size_t i = 0; i < n; ++i) {
     double a = phase + 2.0 * M_PI * static_cast<double>(i) / static_cast<double>(n);
@@ -56,8 +56,8 @@ inline Structure structure(const MedialAxis& ma) {
     if (ma.vertices()[v].degree >= 3) ++s.branch_points;
     if (ma.vertices()[v].degree == 1) ++s.leaves;
   }
-  s.cycles = static_cast<long>(ma.edges().size()) - static_cast<long>(n) +
-             static_cast<long>(s.components);
+  s.cycles =
+      static_cast<long>(ma.edges().size()) - static_cast<long>(n) + static_cast<long>(s.components);
   return s;
 }
 

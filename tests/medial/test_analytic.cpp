@@ -1,16 +1,15 @@
 // The medial axis on shapes whose axis is known in closed form.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <ostream>
 
 #include "medial_test_util.hpp"
 
 using namespace laytracks;
+using Catch::Matchers::WithinAbs;
 using laytracks::test::polygon;
 using laytracks::test::regular;
 using laytracks::test::structure;
-using Catch::Matchers::WithinAbs;
 
 namespace {
 
@@ -56,8 +55,8 @@ TEST_CASE("rectangle 10x4: two branch points of radius 2 and four corner branche
 }
 
 TEST_CASE("L-shape: one parabolic arc, at the reflex corner", "[medial]") {
-  const MedialAxis ma = compute_medial_axis(
-      polygon({{{0, 0}, {20, 0}, {20, 6}, {6, 6}, {6, 14}, {0, 14}}}));
+  const MedialAxis ma =
+      compute_medial_axis(polygon({{{0, 0}, {20, 0}, {20, 6}, {6, 6}, {6, 14}, {0, 14}}}));
   // The arc around the reflex corner (6, 6) is one curve in two Voronoi edges: the corner
   // against the bottom side and against the left side, meeting at the branch point that also
   // touches both sides, (t, t) with t = 6 (2 - sqrt 2).
@@ -87,8 +86,8 @@ TEST_CASE("L-shape: one parabolic arc, at the reflex corner", "[medial]") {
 }
 
 TEST_CASE("square with a square hole: a single cycle around the hole", "[medial]") {
-  const MedialAxis ma = compute_medial_axis(polygon(
-      {{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {{3, 3}, {3, 7}, {7, 7}, {7, 3}}}));
+  const MedialAxis ma = compute_medial_axis(
+      polygon({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {{3, 3}, {3, 7}, {7, 7}, {7, 3}}}));
   const auto s = structure(ma);
   CHECK(s.components == 1);
   CHECK(s.cycles == 1);
@@ -109,7 +108,8 @@ TEST_CASE("regular polygon: one branch point at the centre", "[medial]") {
     REQUIRE(b.size() == 1);
     CHECK(distance(ma.vertex(b[0]).position, {1, -2}) < 1e-9);
     CHECK(ma.vertex(b[0]).degree == n);
-    CHECK_THAT(ma.vertex(b[0]).radius, WithinAbs(5.0 * std::cos(M_PI / static_cast<double>(n)), 1e-9));
+    CHECK_THAT(ma.vertex(b[0]).radius,
+               WithinAbs(5.0 * std::cos(M_PI / static_cast<double>(n)), 1e-9));
     CHECK(ma.edges().size() == n);
   }
 }

@@ -1,8 +1,7 @@
 // Every test part (../shared/cases, external/ and samples/) gives a medial axis that passes the
 // invariants, in every pose.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 
 #include "laytracks/brep/build.hpp"
@@ -22,7 +21,8 @@ bool inside(const Polygon2& poly, Vec2 p) {
     for (std::size_t i = 0, j = loop.size() - 1; i < loop.size(); j = i++) {
       const Vec2 a = loop[i];
       const Vec2 b = loop[j];
-      if ((a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x) in = !in;
+      if ((a.y > p.y) != (b.y > p.y) && p.x < (b.x - a.x) * (p.y - a.y) / (b.y - a.y) + a.x)
+        in = !in;
     }
   }
   return in;
@@ -77,7 +77,8 @@ void check_invariants(const Part& part, const std::vector<MedialAxis>& axes) {
     std::size_t uncovered = 0;
     for (int i = 0; i <= n; ++i) {
       for (int j = 0; j <= n; ++j) {
-        const Vec2 q{box.lo.x + (box.hi.x - box.lo.x) * i / n, box.lo.y + (box.hi.y - box.lo.y) * j / n};
+        const Vec2 q{box.lo.x + (box.hi.x - box.lo.x) * i / n,
+                     box.lo.y + (box.hi.y - box.lo.y) * j / n};
         if (!inside(ma.polygon(), q)) continue;
         const bool covered = std::any_of(disks.begin(), disks.end(), [&](const auto& d) {
           return distance(d.first, q) <= d.second + tol;
@@ -129,7 +130,8 @@ std::vector<Pose> poses() {
           {"mirrored", mirror_x()},
           {"scaled 1e-3", scaling(1e-3)},
           {"scaled 1e3", scaling(1e3)},
-          {"all at once", compose(translation({-7, 8, 9}), compose(scaling(1e3), compose(mirror_x(), turn)))}};
+          {"all at once",
+           compose(translation({-7, 8, 9}), compose(scaling(1e3), compose(mirror_x(), turn)))}};
 }
 
 double scale_of(const Transform& t) { return norm(t.apply({1, 0, 0}) - t.apply({0, 0, 0})); }

@@ -4,8 +4,8 @@
 #include "medial_test_util.hpp"
 
 using namespace laytracks;
-using laytracks::test::polygon;
 using Catch::Matchers::WithinAbs;
+using laytracks::test::polygon;
 
 namespace {
 

@@ -25,7 +25,7 @@ Part load_part(const std::string& path);
 /// A rigid or similarity transform applied to a RawPart: every vertex and arc via point.
 struct Transform {
   double m[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};  ///< linear part
-  Vec3 t;                                             ///< translation
+  Vec3 t;                                              ///< translation
   Vec3 apply(Vec3 p) const;
 };
 Transform rotation(Vec3 axis, double angle_rad);

@@ -13,8 +13,8 @@ struct DualEdge {
 };
 
 /// Vertex i is patch i.
-using DualGraph = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS,
-                                        boost::no_property, DualEdge>;
+using DualGraph = boost::
+    adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, boost::no_property, DualEdge>;
 
 DualGraph build_dual_graph(const Part& part);
 

@@ -2,8 +2,8 @@
 #pragma once
 
 #include <cmath>
-#include <cstdint>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 
 namespace laytracks {
@@ -26,7 +26,9 @@ inline double norm(Vec2 a) { return std::hypot(a.x, a.y); }
 inline double distance(Vec2 a, Vec2 b) { return norm(a - b); }
 /// The vector turned a quarter turn counter-clockwise.
 inline Vec2 perp(Vec2 a) { return {-a.y, a.x}; }
-inline Vec2 lerp(Vec2 a, Vec2 b, double t) { return {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)}; }
+inline Vec2 lerp(Vec2 a, Vec2 b, double t) {
+  return {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)};
+}
 
 struct Vec3 {
   double x = 0.0;

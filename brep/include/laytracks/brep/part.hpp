@@ -83,7 +83,7 @@ struct Part {
   std::vector<BrepEdge> edges;
   std::vector<Patch> patches;
   MeshParams mesh;
-  Box3 bbox;             ///< of the file's vertices used by patches (arcs may bulge out of it)
+  Box3 bbox;  ///< of the file's vertices used by patches (arcs may bulge out of it)
   /// The length every relative tolerance refers to: twice the largest distance of a used vertex
   /// from their centroid. Invariant under rotation and mirroring, unlike the bbox diagonal.
   double size = 0.0;

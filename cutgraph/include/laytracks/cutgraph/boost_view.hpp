@@ -10,17 +10,17 @@
 namespace laytracks {
 
 struct CutGraphNode {
-  bool on_axis = false;   ///< an MA-CUT-VERT (else a G-CUT-VERT)
+  bool on_axis = false;     ///< an MA-CUT-VERT (else a G-CUT-VERT)
   std::uint32_t index = 0;  ///< into CutGraph::macuts or CutGraph::gverts
 };
 
 struct CutGraphArc {
-  PatchId patch;  ///< the patch the rail segment lies in
+  PatchId patch;              ///< the patch the rail segment lies in
   std::uint32_t segment = 0;  ///< into CutGraph::segments
 };
 
-using CutGraphBoost = boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS,
-                                            CutGraphNode, CutGraphArc>;
+using CutGraphBoost =
+    boost::adjacency_list<boost::vecS, boost::vecS, boost::undirectedS, CutGraphNode, CutGraphArc>;
 
 /// Vertices 0 .. gverts.size()-1 are the G-CUT-VERTs, then the MA-CUT-VERTs.
 CutGraphBoost to_boost_graph(const CutGraph& graph);

@@ -63,21 +63,21 @@ struct RailSegment {
 
 /// How a rail chain ends (see docs/cutgraph.md).
 enum class RailEnd : std::uint8_t {
-  Loop,          ///< it closes on itself
-  FreeEdge,      ///< on an edge used by one patch only
-  ConcaveVertex, ///< at a reflex corner
-  BranchPoint,   ///< at an MA branch point, where it forks
-  Junction,      ///< on an edge shared by 3 or more patches, where it forks
-  ConvexVertex,  ///< at a convex corner (a degenerate rail of length 0)
-  RoundCorner,   ///< at the centre of a rounded convex corner (a polygonised arc)
-  Lost,          ///< nowhere the geometry allows: a bug
+  Loop,           ///< it closes on itself
+  FreeEdge,       ///< on an edge used by one patch only
+  ConcaveVertex,  ///< at a reflex corner
+  BranchPoint,    ///< at an MA branch point, where it forks
+  Junction,       ///< on an edge shared by 3 or more patches, where it forks
+  ConvexVertex,   ///< at a convex corner (a degenerate rail of length 0)
+  RoundCorner,    ///< at the centre of a rounded convex corner (a polygonised arc)
+  Lost,           ///< nowhere the geometry allows: a bug
 };
 const char* to_string(RailEnd end);
 
 /// A rail chain: a maximal path of rail segments through points where exactly two meet.
 struct RailChain {
-  std::vector<GCutId> through;  ///< the boundary points it passes, in order
-  std::vector<PatchId> patches; ///< the patches it crosses, ascending, each once
+  std::vector<GCutId> through;   ///< the boundary points it passes, in order
+  std::vector<PatchId> patches;  ///< the patches it crosses, ascending, each once
   RailEnd start = RailEnd::Lost;
   RailEnd end = RailEnd::Lost;
   double closure_gap = 0.0;  ///< for loops: how far the last landing is from the first point
@@ -126,7 +126,8 @@ struct CutGraphOptions {
 /// breadth first across patches through shared edges (Algorithm II); then, if a track width
 /// is given, removes narrow corridors by deleting source rails and lays the track rails of
 /// every corridor. `axes[p]` is the medial axis of patch p.
-CutGraph build_cut_graph(const Part& part, const std::vector<MedialAxis>& axes,
+CutGraph build_cut_graph(const Part& part,
+                         const std::vector<MedialAxis>& axes,
                          const CutGraphOptions& options = {});
 
 /// A CUT-SEG: the piece of a loop between two consecutive rails or corners, u from u0 to u1
@@ -146,13 +147,15 @@ struct CorridorPiece {
 
 /// The CUT-SEGs of every loop and their corridors: two CUT-SEGs are in one corridor when one
 /// maps onto the other across the medial axis, or when they share a B-Rep edge.
-std::vector<CorridorPiece> corridor_pieces(const Part& part, const std::vector<MedialAxis>& axes,
+std::vector<CorridorPiece> corridor_pieces(const Part& part,
+                                           const std::vector<MedialAxis>& axes,
                                            const CutGraph& graph);
 
 /// The validator: no two rails cross inside a patch; every CUT-VERT on a shared edge has an
 /// image in every patch of that edge at the same 3D point; every MA-CUT-VERT lies on its axis.
 /// Returns the problems found, each a sentence; empty when valid.
-std::vector<std::string> validate_cut_graph(const Part& part, const std::vector<MedialAxis>& axes,
+std::vector<std::string> validate_cut_graph(const Part& part,
+                                            const std::vector<MedialAxis>& axes,
                                             const CutGraph& graph);
 
 }  // namespace laytracks

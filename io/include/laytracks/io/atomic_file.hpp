@@ -10,6 +10,7 @@ namespace laytracks {
 /// Calls `write` with a stream onto a temporary file beside `path`, then renames it over `path`.
 /// If `write` throws or the stream fails, the temporary file is removed, `path` is untouched,
 /// and the error propagates (as laytracks::Error for I/O failures).
-void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+void write_file_atomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& write);
 
 }  // namespace laytracks

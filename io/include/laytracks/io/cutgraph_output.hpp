@@ -13,7 +13,10 @@ namespace laytracks {
 /// One panel per patch, in its own plane (the part unfolded patch by patch): each CUT-SEG's
 /// region shaded in its corridor's colour, the medial axis in grey, source rails in red and
 /// track rails in blue. `title` names the stage.
-void write_rails_svg(std::ostream& out, const Part& part, const std::vector<MedialAxis>& axes,
-                     const CutGraph& graph, const std::string& title);
+void write_rails_svg(std::ostream& out,
+                     const Part& part,
+                     const std::vector<MedialAxis>& axes,
+                     const CutGraph& graph,
+                     const std::string& title);
 
 }  // namespace laytracks

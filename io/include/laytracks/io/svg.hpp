@@ -27,8 +27,11 @@ class SvgDocument {
  public:
   SvgDocument(double width, double height);
   /// Appends an element; coordinates are picture coordinates (use Panel::map).
-  void polyline(const std::vector<Vec2>& pts, const std::string& stroke, double width,
-                bool closed = false, const std::string& fill = "none");
+  void polyline(const std::vector<Vec2>& pts,
+                const std::string& stroke,
+                double width,
+                bool closed = false,
+                const std::string& fill = "none");
   void circle(Vec2 c, double r, const std::string& fill, const std::string& stroke = "none");
   void text(Vec2 at, const std::string& s, double size, const std::string& anchor = "start");
   void rect(Vec2 lo, Vec2 hi, const std::string& fill, const std::string& stroke);
