@@ -15,19 +15,21 @@ namespace laytracks::cli {
 
 const char* const kDrawHelp =
     "usage: laytracks draw PART.json --stage medial|corridors|tracks -o OUT.svg [--size W]\n"
-    "                      [--chord-tol T]\n"
+    "                      [--view unfolded|oblique] [--chord-tol T]\n"
     "\n"
-    "Draws a stage as SVG, one panel per patch in its own plane (the part unfolded):\n"
+    "Draws a stage as SVG: one panel per patch in its own plane (unfolded), or, for corridors\n"
+    "and tracks, the whole part in an oblique view (the default for parts of several patches):\n"
     "  medial     the boundary and the medial axis coloured by radius, branch points in red\n"
     "  corridors  the source rails (red) and the corridors between them, shaded\n"
     "  tracks     the track rails (blue) laid at width W and the tracks, shaded\n"
     "\n"
     "  --size W       track width (default: the part's mesh.size, else 1/40 of its bounding-box\n"
     "                 diagonal)\n"
+    "  --view V       unfolded or oblique\n"
     "  --chord-tol T  sagitta bound for arcs\n";
 
 int run_draw(const std::vector<std::string>& argv) {
-  const Args args(argv, {"--stage", "-o", "--size", "--chord-tol"}, {});
+  const Args args(argv, {"--stage", "-o", "--size", "--chord-tol", "--view"}, {});
   if (args.positional().size() != 1) throw UsageError("draw needs exactly one PART.json");
   const auto out = args.value("-o");
   if (!out) throw UsageError("draw needs -o OUT.svg");
@@ -48,9 +50,17 @@ int run_draw(const std::vector<std::string>& argv) {
     options.track_width = args.positive_number("--size").value_or(
         part.mesh.size.value_or(part.bbox.diagonal() / 40.0));
   }
+  const std::string view =
+      args.value("--view").value_or(part.patches.size() > 1 ? "oblique" : "unfolded");
+  if (view != "oblique" && view != "unfolded") throw UsageError("--view is unfolded or oblique");
   const CutGraph graph = build_cut_graph(part, axes, options);
-  write_file_atomically(*out,
-                        [&](std::ostream& o) { write_rails_svg(o, part, axes, graph, stage); });
+  write_file_atomically(*out, [&](std::ostream& o) {
+    if (view == "oblique") {
+      write_rails_oblique_svg(o, part, axes, graph, stage);
+    } else {
+      write_rails_svg(o, part, axes, graph, stage);
+    }
+  });
   return kOk;
 }
 

@@ -97,4 +97,72 @@ void write_rails_svg(std::ostream& out,
   out << svg.str();
 }
 
+namespace {
+
+/// An oblique camera: the viewer is towards +x, -y, +z; screen y points up.
+struct Camera {
+  Vec3 right = normalized(Vec3{1.0, 1.0, 0.0});
+  Vec3 toward = normalized(Vec3{1.0, -1.0, 0.9});  // from the part towards the viewer
+  Vec3 up = normalized(cross(toward, right));
+  Vec2 screen(Vec3 p) const { return {dot(p, right), dot(p, up)}; }
+  double depth(Vec3 p) const { return dot(p, toward); }
+};
+
+}  // namespace
+
+void write_rails_oblique_svg(std::ostream& out,
+                             const Part& part,
+                             const std::vector<MedialAxis>& axes,
+                             const CutGraph& graph,
+                             const std::string& title) {
+  const Camera cam;
+  Box2 box;
+  for (const BrepVertex& v : part.vertices) box.add(cam.screen(v.position));
+  const double size = 900.0;
+  SvgDocument svg(size, size + 30.0);
+  const Panel panel(box, 0.0, 0.0, size, size, 24.0);
+  const auto at = [&](PatchId p, Vec2 q) {
+    return panel.map(cam.screen(part.patches[p.index()].frame.to_3d(q)));
+  };
+  // Patches far to near (painter's order by the depth of their centroids).
+  std::vector<std::pair<double, std::size_t>> order;
+  for (std::size_t p = 0; p < part.patches.size(); ++p) {
+    order.push_back({cam.depth(part.patches[p].frame.origin), p});
+  }
+  std::sort(order.begin(), order.end());
+  const std::vector<CorridorPiece> pieces = corridor_pieces(part, axes, graph);
+  for (const auto& [depth, p] : order) {
+    (void)depth;
+    const PatchId pid(p);
+    for (const auto& loop : part.patches[p].polygon.loops) {
+      std::vector<Vec2> pts;
+      for (Vec2 q : loop) pts.push_back(at(pid, q));
+      svg.polyline(pts, "none", 0.0, true, "#f4f1ea");
+    }
+    for (const CorridorPiece& c : pieces) {
+      if (c.patch != pid) continue;
+      std::vector<Vec2> pts = loop_piece(part.patches[p].polygon.loops[c.loop], c.u0, c.u1);
+      pts.push_back(c.ma1);
+      pts.push_back(c.ma0);
+      for (Vec2& q : pts) q = at(pid, q);
+      svg.polyline(pts, "none", 0.0, true, corridor_colour(c.corridor));
+    }
+    for (const RailSegment& s : graph.segments) {
+      const CutVert& c = graph.cuts[s.cut.index()];
+      if (c.patch != pid) continue;
+      const bool source = graph.macuts[s.ma.index()].branch;
+      svg.polyline({at(pid, c.position), at(pid, graph.macuts[s.ma.index()].point.position)},
+                   source ? "#d62728" : "#1f5fbf", source ? 1.2 : 0.6);
+    }
+    for (const auto& loop : part.patches[p].polygon.loops) {
+      std::vector<Vec2> pts;
+      for (Vec2 q : loop) pts.push_back(at(pid, q));
+      svg.polyline(pts, "#222", 1.4, true);
+    }
+  }
+  svg.text({10.0, size + 20.0}, title + " (oblique view): source rails red, track rails blue",
+           12.0);
+  out << svg.str();
+}
+
 }  // namespace laytracks

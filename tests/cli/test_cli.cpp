@@ -171,6 +171,12 @@ TEST_CASE("check-loops reports the cube's loops as JSON, and draw writes picture
     CHECK(draw.status == 0);
     CHECK(slurp(svg).find("</svg>") != std::string::npos);
   }
+  const Run oblique = run("draw " + cube + " --stage tracks --view oblique -o " + q(d / "o.svg"));
+  CHECK(oblique.status == 0);
+  CHECK(slurp(d / "o.svg").find("oblique view") != std::string::npos);
+  const Run bad_view = run("draw " + cube + " --stage tracks --view top -o " + q(d / "y.svg"));
+  CHECK(bad_view.status == 2);
+  CHECK_FALSE(fs::exists(d / "y.svg"));
   const Run bad = run("draw " + cube + " --stage quads -o " + q(d / "x.svg"));
   CHECK(bad.status == 2);
   CHECK_FALSE(fs::exists(d / "x.svg"));

@@ -19,4 +19,12 @@ void write_rails_svg(std::ostream& out,
                      const CutGraph& graph,
                      const std::string& title);
 
+/// The whole part in an oblique view (seen from the front-right, above): each patch drawn far
+/// to near with its CUT-SEG regions shaded and its rails, so a shell reads as one object.
+void write_rails_oblique_svg(std::ostream& out,
+                             const Part& part,
+                             const std::vector<MedialAxis>& axes,
+                             const CutGraph& graph,
+                             const std::string& title);
+
 }  // namespace laytracks
