@@ -31,6 +31,11 @@ double BoundaryIndex::edge_param(PatchId p, std::uint32_t loop, std::uint32_t se
   return forward ? s : 1.0 - s;
 }
 
+LoopKey loop_key(const Part& part, PatchId p, std::uint32_t loop, double u) {
+  const double n = static_cast<double>(part.patches[p.index()].polygon.loops[loop].size());
+  return std::make_tuple(p.value, loop, std::llround(std::fmod(u, n) * 1e9));
+}
+
 int corner_turn(const Part& part, PatchId p, std::uint32_t loop, std::uint32_t index) {
   const Polygon2& poly = part.patches[p.index()].polygon;
   if (poly.smooth[loop][index]) return 0;
@@ -41,6 +46,14 @@ int corner_turn(const Part& part, PatchId p, std::uint32_t loop, std::uint32_t i
   const Vec2 c = l[(index + 1) % n];
   const double t = cross(b - a, c - b);
   return t > 0.0 ? 1 : t < 0.0 ? -1 : 0;
+}
+
+GCutRegistry::GCutRegistry(const Part& part, double tolerance)
+    : part_(part), tol_(tolerance), first_edge_(part.vertices.size()) {
+  for (std::size_t e = part.edges.size(); e-- > 0;) {
+    first_edge_[part.edges[e].a.index()] = EdgeId(e);
+    first_edge_[part.edges[e].b.index()] = EdgeId(e);
+  }
 }
 
 GCutId GCutRegistry::find_or_add(
@@ -98,14 +111,9 @@ GCutId GCutRegistry::find_or_add_vertex(VertexId v, std::vector<GCutVert>& gvert
   GCutVert g;
   g.vertex = v;
   g.position = part_.vertices[v.index()].position;
-  // Any edge of the vertex will do as `edge`; pick the first that uses it.
-  for (std::size_t e = 0; e < part_.edges.size(); ++e) {
-    if (part_.edges[e].a == v || part_.edges[e].b == v) {
-      g.edge = EdgeId(e);
-      g.t = part_.edges[e].a == v ? 0.0 : 1.0;
-      break;
-    }
-  }
+  // Any edge of the vertex will do as `edge`: the first that uses it.
+  g.edge = first_edge_[v.index()];
+  g.t = part_.edges[g.edge.index()].a == v ? 0.0 : 1.0;
   const GCutId id(gverts.size());
   gverts.push_back(g);
   at_vertex_[v.value] = id;

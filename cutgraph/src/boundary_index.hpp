@@ -3,6 +3,7 @@
 #pragma once
 
 #include <map>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -43,6 +44,12 @@ class BoundaryIndex {
   std::vector<std::vector<CornerRef>> vertex_refs_;
 };
 
+/// A place on a patch's loop, as a map key: patch, loop, and the loop parameter u (wrapped
+/// into [0, segment count)) on a grid of 1e-9, so that a break point found from a CUT-VERT and
+/// from a CUT-SEG end is the same key.
+using LoopKey = std::tuple<std::uint32_t, std::uint32_t, long long>;
+LoopKey loop_key(const Part& part, PatchId p, std::uint32_t loop, double u);
+
 /// Turn at a corner of a patch: +1 convex, -1 reflex, 0 straight or smooth.
 int corner_turn(const Part& part, PatchId p, std::uint32_t loop, std::uint32_t index);
 
@@ -50,7 +57,7 @@ int corner_turn(const Part& part, PatchId p, std::uint32_t loop, std::uint32_t i
 class GCutRegistry {
  public:
   /// `tolerance`: two points closer than this (part units) are the same G-CUT-VERT.
-  GCutRegistry(const Part& part, double tolerance) : part_(part), tol_(tolerance) {}
+  GCutRegistry(const Part& part, double tolerance);
 
   /// The G-CUT-VERT at parameter t of edge e (snapped to the edge's vertices within the
   /// tolerance), creating it if needed. `gap` receives the distance to an existing one that was
@@ -63,6 +70,7 @@ class GCutRegistry {
   double tol_;
   std::vector<std::vector<std::pair<double, GCutId>>> on_edge_;  // sorted by t, per edge
   std::map<std::uint32_t, GCutId> at_vertex_;
+  std::vector<EdgeId> first_edge_;  ///< per vertex: the first edge that uses it
 };
 
 }  // namespace laytracks::cutgraph_detail

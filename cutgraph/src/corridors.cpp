@@ -212,11 +212,9 @@ std::vector<CorridorPiece> corridor_pieces_impl(const Part& part,
                                                 const CutGraph& graph) {
   Corridors c = find_corridors(part, axes, graph);
   // Where the rail at each break point meets the axis: from the rail segments, else the corner.
-  std::map<std::tuple<std::uint32_t, std::uint32_t, long long>, Vec2> ma_at;
+  std::map<LoopKey, Vec2> ma_at;
   const auto key = [&](PatchId p, std::uint32_t loop, double u) {
-    const double n = static_cast<double>(part.patches[p.index()].polygon.loops[loop].size());
-    u = std::fmod(u, n);
-    return std::make_tuple(p.value, loop, std::llround(u * 1e9));
+    return loop_key(part, p, loop, u);
   };
   for (const RailSegment& s : graph.segments) {
     const CutVert& cv = graph.cuts[s.cut.index()];

@@ -68,10 +68,9 @@ void remove_narrow_corridors(const Part& part,
       uf.unite(l.from, l.to);
     }
     // Break points of the CUT-SEGs: the G-CUT-VERT there, if any.
-    std::map<std::tuple<std::uint32_t, std::uint32_t, long long>, GCutId> cut_at;
+    std::map<LoopKey, GCutId> cut_at;
     const auto key = [&](PatchId p, std::uint32_t loop, double u) {
-      const double n = static_cast<double>(part.patches[p.index()].polygon.loops[loop].size());
-      return std::make_tuple(p.value, loop, std::llround(std::fmod(u, n) * 1e9));
+      return loop_key(part, p, loop, u);
     };
     for (const CutVert& c : g.cuts) cut_at[key(c.patch, c.at.loop, c.at.u())] = c.g;
     // Corridors: width (longest CUT-SEG) and bounding break points.
@@ -102,8 +101,7 @@ void remove_narrow_corridors(const Part& part,
       if (g.gverts[i].vertex) ++rays_at_vertex[g.gverts[i].vertex->value];
     }
     // Where each G-CUT-VERT first appears along the boundary (patch, loop, u).
-    std::vector<std::tuple<std::uint32_t, std::uint32_t, long long>> place(
-        g.gverts.size(), std::make_tuple(UINT32_MAX, UINT32_MAX, LLONG_MAX));
+    std::vector<LoopKey> place(g.gverts.size(), std::make_tuple(UINT32_MAX, UINT32_MAX, LLONG_MAX));
     for (const CutVert& c : g.cuts) {
       place[c.g.index()] = std::min(place[c.g.index()], key(c.patch, c.at.loop, c.at.u()));
     }
@@ -150,7 +148,7 @@ void remove_narrow_corridors(const Part& part,
       // not depend on how the axis happened to be numbered, so the choice is the same in every
       // pose.
       std::vector<std::uint32_t> best;
-      std::tuple<std::uint32_t, std::uint32_t, long long> best_key{};
+      LoopKey best_key{};
       for (const auto& [unit, sets] : units) {
         std::vector<std::uint32_t> srcs;
         for (std::size_t set : sets) {

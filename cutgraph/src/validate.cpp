@@ -113,10 +113,9 @@ std::vector<std::string> validate_cut_graph(const Part& part,
     problems.push_back("the CUT-GRAPH is not bipartite");
   }
   // Every corridor piece is bounded by two rails or corners, the boundary and the axis.
-  std::map<std::tuple<std::uint32_t, std::uint32_t, long long>, bool> railed;
+  std::map<cutgraph_detail::LoopKey, bool> railed;
   const auto key = [&](PatchId p, std::uint32_t loop, double u) {
-    const double n = static_cast<double>(part.patches[p.index()].polygon.loops[loop].size());
-    return std::make_tuple(p.value, loop, std::llround(std::fmod(u, n) * 1e9));
+    return cutgraph_detail::loop_key(part, p, loop, u);
   };
   for (const RailSegment& s : graph.segments) {
     const CutVert& c = graph.cuts[s.cut.index()];
