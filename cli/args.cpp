@@ -54,3 +54,19 @@ std::optional<double> Args::positive_number(const std::string& name) const {
 }
 
 }  // namespace laytracks::cli
+
+namespace laytracks::cli {
+
+std::optional<long> Args::count(const std::string& name, long max) const {
+  const auto v = value(name);
+  if (!v) return std::nullopt;
+  char* end = nullptr;
+  const long n = std::strtol(v->c_str(), &end, 10);
+  if (end == v->c_str() || *end != '\0' || n < 0 || n > max) {
+    throw UsageError("option " + name + " needs a whole number from 0 to " + std::to_string(max) +
+                     ", got \"" + *v + "\"");
+  }
+  return n;
+}
+
+}  // namespace laytracks::cli

@@ -29,6 +29,8 @@ class Args {
   std::optional<std::string> value(const std::string& name) const;
   /// The option's value as a positive finite number, if given.
   std::optional<double> positive_number(const std::string& name) const;
+  /// The option's value as a whole number in [0, max], if given.
+  std::optional<long> count(const std::string& name, long max = 1000000) const;
 
  private:
   std::vector<std::string> positional_;

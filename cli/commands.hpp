@@ -17,6 +17,10 @@ enum Status : int {
   kInvalidMesh = 5,   ///< quality: the mesh breaks a validity rule of quality.md
 };
 
+int run_mesh(const std::vector<std::string>& args);
+extern const char* const kMeshHelp;
+/// Throws UsageError unless write_mesh knows the extension of `path`.
+void check_mesh_extension(const std::string& path);
 int run_medial(const std::vector<std::string>& args);
 extern const char* const kMedialHelp;
 int run_check_loops(const std::vector<std::string>& args);

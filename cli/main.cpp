@@ -14,6 +14,7 @@ const char* const kHelp =
     "usage: laytracks COMMAND [ARGS]\n"
     "\n"
     "commands:\n"
+    "  mesh PART.json -o OUT  mesh the part with quads, check it, write .msh .vtu .bdf .inp ...\n"
     "  medial PART.json       the medial axis of every patch, as JSON and as a picture\n"
     "  check-loops PART.json  lay the rails and report how every rail chain ends\n"
     "  draw PART.json         picture of a stage: medial, corridors or tracks\n"
@@ -30,7 +31,9 @@ const char* const kHelp =
 int dispatch(const std::vector<std::string>& args) {
   using namespace laytracks::cli;
   if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
-    if (args.size() > 1 && args[1] == "medial") {
+    if (args.size() > 1 && args[1] == "mesh") {
+      std::cout << kMeshHelp;
+    } else if (args.size() > 1 && args[1] == "medial") {
       std::cout << kMedialHelp;
     } else if (args.size() > 1 && args[1] == "check-loops") {
       std::cout << kCheckLoopsHelp;
@@ -51,6 +54,7 @@ int dispatch(const std::vector<std::string>& args) {
   for (const auto& a : rest) {
     if (a == "--help" || a == "-h") return dispatch({"help", args[0]});
   }
+  if (args[0] == "mesh") return run_mesh(rest);
   if (args[0] == "medial") return run_medial(rest);
   if (args[0] == "check-loops") return run_check_loops(rest);
   if (args[0] == "draw") return run_draw(rest);

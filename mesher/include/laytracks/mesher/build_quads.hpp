@@ -1,0 +1,50 @@
+// Quads from the rails: nodes on rails and boundary pieces, parity made even, every face of a
+// patch cut by its rails filled with quads, shells conformal through shared boundary nodes
+// (paper, section 4.3; the rules are in docs/mesher.md).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "laytracks/brep/part.hpp"
+#include "laytracks/cutgraph/cut_graph.hpp"
+#include "laytracks/medial/medial_axis.hpp"
+#include "laytracks/mesher/quad_mesh.hpp"
+
+namespace laytracks {
+
+struct QuadOptions {
+  /// Element size h: the track width the rails were laid with (uniform mode).
+  double size = 0.0;
+};
+
+/// What the quad stage did, for reports and tests.
+struct QuadStats {
+  std::size_t faces = 0;  ///< faces of the patches cut by their rails
+  /// Faces per template: grid, diamond, quad, ring, split (mesher_detail::FillKind order).
+  std::array<std::size_t, 5> by_template{};
+  std::size_t dangling_rails = 0;  ///< rail segments left out: their MA end met no other rail
+  std::size_t parity_boundary = 0;  ///< boundary pieces given one more edge for parity
+  std::size_t parity_rails = 0;     ///< rail segments given one more edge for parity
+};
+
+struct QuadResult {
+  QuadMesh mesh;
+  QuadStats stats;
+};
+
+/// Builds the all-quad mesh of the part from its medial axes and cut graph. Every node on a
+/// B-Rep edge is shared by all the patches of that edge. Throws InternalError when a face cannot
+/// be meshed or the parity cannot be made even; the mesh is not checked here (check_mesh is).
+QuadResult build_quads(const Part& part,
+                       const std::vector<MedialAxis>& axes,
+                       const CutGraph& graph,
+                       const QuadOptions& options);
+
+/// Smooths the interior nodes of every patch (`iterations` Laplacian sweeps in the patch
+/// frame). Nodes on B-Rep edges never move; a move is kept only when no quad around the node
+/// falls below min(its scaled Jacobian before, 0.2), so no element is ever inverted.
+void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations);
+
+}  // namespace laytracks

@@ -1,0 +1,73 @@
+// The whole pipeline for one part: medial axes, rails, quads, smoothing, the self-check.
+// Shared by `laytracks mesh`, `batch`, the benchmark and the tests.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "laytracks/brep/error.hpp"
+#include "laytracks/brep/part.hpp"
+#include "laytracks/mesher/build_quads.hpp"
+#include "laytracks/mesher/check.hpp"
+#include "laytracks/mesher/quad_mesh.hpp"
+
+namespace laytracks {
+
+/// Default element size when neither the command line nor the part's mesh.size gives one:
+/// 1/40 of Part::size (the same in every pose).
+double default_element_size(const Part& part);
+
+/// Default smoothing sweeps of `laytracks mesh` (docs/mesher.md says why).
+constexpr int kDefaultSmooth = 10;
+
+struct MeshPartOptions {
+  std::optional<double> size;  ///< element size; default: mesh.size, else default_element_size
+  int smooth = kDefaultSmooth;  ///< Laplacian sweeps over interior nodes (0: none)
+};
+
+/// Seconds spent in each stage.
+struct StageTimes {
+  double medial = 0.0;
+  double rails = 0.0;
+  double quads = 0.0;
+  double smooth = 0.0;
+  double check = 0.0;
+};
+
+struct MeshPartResult {
+  QuadMesh mesh;
+  double size = 0.0;
+  QuadStats stats;
+  std::size_t rail_chains = 0;
+  std::size_t tracks = 0;
+  StageTimes times;
+  MeshCheck check;                ///< of the final mesh: valid, or mesh_part threw
+  QualitySummary before_smoothing;  ///< figures of the mesh as built
+  QualitySummary quality;           ///< figures of the final mesh
+};
+
+/// Called when a stage starts: its name ("medial", "rails", "quads", "smooth", "check").
+using StageFn = std::function<void(const char*)>;
+
+/// Error thrown when the mesh fails its self-check: the check and the mesh, to dump.
+class InvalidMeshError : public InternalError {
+ public:
+  InvalidMeshError(const std::string& what, QuadMesh mesh, MeshCheck check)
+      : InternalError(what), mesh_(std::move(mesh)), check_(std::move(check)) {}
+  const QuadMesh& mesh() const { return mesh_; }
+  const MeshCheck& check() const { return check_; }
+
+ private:
+  QuadMesh mesh_;
+  MeshCheck check_;
+};
+
+/// Meshes the part and checks the result by quality.md. Throws InvalidMeshError (the failed
+/// rules, with places) when the mesh is not valid, and InternalError when a stage fails.
+MeshPartResult mesh_part(const Part& part,
+                         const MeshPartOptions& options = {},
+                         const StageFn& on_stage = {});
+
+}  // namespace laytracks

@@ -1,0 +1,643 @@
+// The quad stage. Rules (docs/mesher.md):
+// 1. Boundary: every B-Rep edge is cut at its G-CUT-VERTs into pieces; a piece gets one mesh
+//    edge, or round(length / h) when longer than kSplitPiece x h. Pieces are per B-Rep edge, so
+//    every patch of an edge sees the same nodes (conformity across seams and junctions).
+// 2. Rails: a rail segment (CUT-VERT to MA point) of length R gets max(1, round(R / h)) edges
+//    (Eq. 2-3; both halves of a rail have the same length, so the same count).
+// 3. Faces: each patch, cut by its rails, falls into faces (half-edges traced with the face on
+//    the left). A face needs an even number of boundary edges to be all quads (Eq. 5).
+// 4. Parity: per shell, boundary pieces get one more edge where a patch's boundary count is odd
+//    (a spanning tree over patches joined by shared pieces, free pieces joined to a ground
+//    node); then per patch, odd faces are paired along the shortest path of rails between
+//    them, each rail on it getting one more edge. Both keep every count local to where it was
+//    odd; no global subdivision.
+// 5. Each face is filled by the first template that gives good quads (fill.hpp).
+#include "laytracks/mesher/build_quads.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include "fill.hpp"
+#include "laytracks/brep/error.hpp"
+
+namespace laytracks {
+
+using namespace mesher_detail;
+
+namespace {
+
+constexpr std::uint32_t kNone = 0xffffffffu;
+/// A boundary piece longer than this x h is split into round(length / h) mesh edges.
+constexpr double kSplitPiece = 2.0;
+/// Two MA points of a patch closer than this x the part size are one node.
+constexpr double kSamePointRel = 1e-9;
+
+/// Nodes of one B-Rep edge: breaks (its vertices and its G-CUT-VERTs, by parameter) and the
+/// pieces between consecutive breaks.
+struct EdgeNodes {
+  std::vector<double> t;                        ///< break parameters, 0 and 1 included
+  std::vector<std::uint32_t> node;              ///< mesh node of each break
+  std::vector<std::uint32_t> count;             ///< mesh edges per piece
+  std::vector<std::vector<std::uint32_t>> inner;  ///< per piece, its inner nodes from t[j] on
+};
+
+struct CNode {  // a node of a patch's coarse graph
+  Vec2 p;
+  std::uint32_t mesh = kNone;  ///< for boundary nodes; MA nodes get theirs when materialised
+  bool ma = false;
+};
+
+struct CEdge {
+  std::uint32_t a = 0, b = 0;  ///< boundary: along the loop; rail: from the cut to the MA point
+  bool rail = false;
+  EdgeId edge;                 ///< boundary: the B-Rep edge
+  std::uint32_t piece = 0;     ///< boundary: its piece on that edge
+  bool forward = true;         ///< boundary: loop direction = edge direction
+  std::uint32_t count = 1;     ///< rail: mesh edges
+  std::vector<std::uint32_t> inner;  ///< rail: inner nodes from a to b
+  std::uint32_t face[2] = {kNone, kNone};  ///< faces on the left of a->b and of b->a
+};
+
+struct Half {
+  std::uint32_t edge;
+  bool reverse;  ///< traversed b -> a
+};
+
+struct PatchGraph {
+  std::vector<CNode> nodes;
+  std::vector<CEdge> edges;
+  std::vector<std::vector<Half>> faces;
+  std::map<std::uint32_t, Vec2> boundary_2d;  ///< mesh node -> position in the patch frame
+};
+
+class QuadBuilder {
+ public:
+  QuadBuilder(const Part& part,
+              const std::vector<MedialAxis>& axes,
+              const CutGraph& graph,
+              const QuadOptions& options)
+      : part_(part), axes_(axes), graph_(graph), h_(options.size) {
+    if (!(h_ > 0.0)) throw InternalError("mesher: the element size must be positive");
+  }
+
+  QuadResult run() {
+    make_boundary_nodes();
+    patches_.resize(part_.patches.size());
+    for (std::size_t p = 0; p < part_.patches.size(); ++p) build_patch_graph(PatchId(p));
+    fix_patch_parity();
+    for (std::size_t p = 0; p < part_.patches.size(); ++p) fix_face_parity(PatchId(p));
+    materialise_pieces();
+    for (std::size_t p = 0; p < part_.patches.size(); ++p) fill_patch(PatchId(p));
+    return std::move(result_);
+  }
+
+ private:
+  std::uint32_t add_node(Vec3 x) {
+    result_.mesh.nodes.push_back(x);
+    return static_cast<std::uint32_t>(result_.mesh.nodes.size() - 1);
+  }
+
+  // ---- 1. boundary nodes ----------------------------------------------------------------
+  void make_boundary_nodes() {
+    vertex_node_.assign(part_.vertices.size(), kNone);
+    for (const Patch& patch : part_.patches)
+      for (const Loop& loop : patch.loops)
+        for (VertexId v : loop.vertices)
+          if (vertex_node_[v.index()] == kNone)
+            vertex_node_[v.index()] = add_node(part_.vertices[v.index()].position);
+    std::vector<std::vector<std::pair<double, std::uint32_t>>> breaks(part_.edges.size());
+    gcut_node_.assign(graph_.gverts.size(), kNone);
+    for (std::size_t g = 0; g < graph_.gverts.size(); ++g) {
+      const GCutVert& gv = graph_.gverts[g];
+      if (gv.vertex) {
+        gcut_node_[g] = vertex_node_[gv.vertex->index()];
+        continue;
+      }
+      breaks[gv.edge.index()].push_back({gv.t, static_cast<std::uint32_t>(g)});
+    }
+    edges_.resize(part_.edges.size());
+    for (std::size_t e = 0; e < part_.edges.size(); ++e) {
+      const BrepEdge& edge = part_.edges[e];
+      EdgeNodes& en = edges_[e];
+      auto& br = breaks[e];
+      std::sort(br.begin(), br.end());
+      en.t.push_back(0.0);
+      en.node.push_back(vertex_node_[edge.a.index()]);
+      const Vec3 a = part_.vertices[edge.a.index()].position;
+      const Vec3 b = part_.vertices[edge.b.index()].position;
+      for (const auto& [t, g] : br) {
+        if (en.t.size() > 1 && t == en.t.back()) {
+          gcut_node_[g] = en.node.back();
+          continue;
+        }
+        en.t.push_back(t);
+        en.node.push_back(add_node(lerp3(a, b, t)));
+        gcut_node_[g] = en.node.back();
+      }
+      en.t.push_back(1.0);
+      en.node.push_back(vertex_node_[edge.b.index()]);
+      const double len = distance(a, b);
+      for (std::size_t j = 0; j + 1 < en.t.size(); ++j) {
+        const double piece = (en.t[j + 1] - en.t[j]) * len;
+        en.count.push_back(piece > kSplitPiece * h_
+                               ? static_cast<std::uint32_t>(std::lround(piece / h_))
+                               : 1u);
+      }
+      en.inner.resize(en.count.size());
+    }
+  }
+
+  static Vec3 lerp3(Vec3 a, Vec3 b, double t) { return a + t * (b - a); }
+
+  // ---- 2-3. the coarse graph and its faces ------------------------------------------------
+  void build_patch_graph(PatchId pid) {
+    const Patch& patch = part_.patches[pid.index()];
+    PatchGraph& g = patches_[pid.index()];
+    std::map<std::uint32_t, std::uint32_t> by_mesh;  // boundary mesh node -> coarse node
+    auto boundary_node = [&](std::uint32_t mesh, Vec2 p) {
+      const auto it = by_mesh.find(mesh);
+      if (it != by_mesh.end()) return it->second;
+      const auto id = static_cast<std::uint32_t>(g.nodes.size());
+      g.nodes.push_back({p, mesh, false});
+      by_mesh.emplace(mesh, id);
+      g.boundary_2d.emplace(mesh, p);
+      return id;
+    };
+    for (std::size_t l = 0; l < patch.loops.size(); ++l) {
+      const Loop& loop = patch.loops[l];
+      const auto& poly = patch.polygon.loops[l];
+      const std::size_t n = loop.vertices.size();
+      std::uint32_t first = kNone, prev = kNone;
+      EdgeId prev_edge;
+      std::uint32_t prev_piece = 0;
+      bool prev_forward = true;
+      for (std::size_t i = 0; i < n; ++i) {
+        const EdgeId e = loop.edges[i];
+        const EdgeNodes& en = edges_[e.index()];
+        const bool forward = loop.vertices[i] == part_.edges[e.index()].a;
+        const Vec2 p0 = poly[i], p1 = poly[(i + 1) % n];
+        const std::size_t pieces = en.count.size();
+        for (std::size_t k = 0; k < pieces; ++k) {
+          const std::size_t j = forward ? k : pieces - 1 - k;  // piece index on the edge
+          const std::size_t from = forward ? j : j + 1;         // break at the piece's start
+          const double s = forward ? en.t[from] : 1.0 - en.t[from];
+          const std::uint32_t c = boundary_node(en.node[from], lerp(p0, p1, s));
+          if (first == kNone) first = c;
+          if (prev != kNone) add_boundary_edge(g, prev, c, prev_edge, prev_piece, prev_forward);
+          prev = c;
+          prev_edge = e;
+          prev_piece = static_cast<std::uint32_t>(j);
+          prev_forward = forward;
+        }
+      }
+      add_boundary_edge(g, prev, first, prev_edge, prev_piece, prev_forward);
+    }
+    // Rails of this patch.
+    std::map<std::uint32_t, std::uint32_t> by_macut;
+    std::vector<std::uint32_t> ma_nodes;
+    const double tol = kSamePointRel * part_.size;
+    std::map<std::pair<std::uint32_t, std::uint32_t>, bool> seen;
+    for (const RailSegment& seg : graph_.segments) {
+      const CutVert& cut = graph_.cuts[seg.cut.index()];
+      if (cut.patch != pid) continue;
+      const MaCutVert& mc = graph_.macuts[seg.ma.index()];
+      const auto cit = by_mesh.find(gcut_node_[cut.g.index()]);
+      if (cit == by_mesh.end()) {
+        throw InternalError("mesher: a rail of " + part_.patch_label(pid) +
+                            " starts at a point that is not on its boundary nodes");
+      }
+      const std::uint32_t a = cit->second;
+      std::uint32_t b = kNone;
+      const auto mit = by_macut.find(seg.ma.value);
+      if (mit != by_macut.end()) {
+        b = mit->second;
+      } else {
+        for (std::uint32_t m : ma_nodes)
+          if (distance(g.nodes[m].p, mc.point.position) <= tol) b = m;
+        if (b == kNone) {
+          b = static_cast<std::uint32_t>(g.nodes.size());
+          g.nodes.push_back({mc.point.position, kNone, true});
+          ma_nodes.push_back(b);
+        }
+        by_macut.emplace(seg.ma.value, b);
+      }
+      if (distance(g.nodes[a].p, g.nodes[b].p) <= tol) continue;  // a convex corner: length 0
+      if (!seen.emplace(std::make_pair(a, b), true).second) continue;
+      CEdge r;
+      r.a = a;
+      r.b = b;
+      r.rail = true;
+      const double len = distance(g.nodes[a].p, g.nodes[b].p);
+      r.count = std::max<std::uint32_t>(1, static_cast<std::uint32_t>(std::lround(len / h_)));
+      g.edges.push_back(r);
+    }
+    drop_dangling_rails(g);
+    trace_faces(pid, g);
+  }
+
+  void add_boundary_edge(PatchGraph& g, std::uint32_t a, std::uint32_t b, EdgeId e,
+                         std::uint32_t piece, bool forward) {
+    CEdge c;
+    c.a = a;
+    c.b = b;
+    c.edge = e;
+    c.piece = piece;
+    c.forward = forward;
+    g.edges.push_back(c);
+  }
+
+  /// Rails whose MA end meets no other rail bound no face: dropped (repeatedly).
+  void drop_dangling_rails(PatchGraph& g) {
+    for (;;) {
+      std::vector<std::uint32_t> degree(g.nodes.size(), 0);
+      for (const CEdge& e : g.edges)
+        if (e.rail) ++degree[e.b];
+      const auto before = g.edges.size();
+      g.edges.erase(std::remove_if(g.edges.begin(), g.edges.end(),
+                                   [&](const CEdge& e) { return e.rail && degree[e.b] == 1; }),
+                    g.edges.end());
+      result_.stats.dangling_rails += before - g.edges.size();
+      if (before == g.edges.size()) break;
+    }
+  }
+
+  void trace_faces(PatchId pid, PatchGraph& g) {
+    // Outgoing half-edges per node, counter-clockwise by angle.
+    struct Out {
+      double angle;
+      std::uint32_t edge;
+      bool reverse;
+    };
+    std::vector<std::vector<Out>> out(g.nodes.size());
+    for (std::uint32_t e = 0; e < g.edges.size(); ++e) {
+      const CEdge& c = g.edges[e];
+      const Vec2 d = g.nodes[c.b].p - g.nodes[c.a].p;
+      out[c.a].push_back({std::atan2(d.y, d.x), e, false});
+      out[c.b].push_back({std::atan2(-d.y, -d.x), e, true});
+    }
+    for (auto& o : out)
+      std::sort(o.begin(), o.end(), [](const Out& x, const Out& y) {
+        return x.angle != y.angle ? x.angle < y.angle : x.edge < y.edge;
+      });
+    auto head = [&](Half h) { return h.reverse ? g.edges[h.edge].a : g.edges[h.edge].b; };
+    auto next = [&](Half h) {
+      const std::uint32_t v = head(h);
+      const auto& o = out[v];
+      std::size_t k = 0;
+      while (k < o.size() && !(o[k].edge == h.edge && o[k].reverse != h.reverse)) ++k;
+      const Out& n = o[(k + o.size() - 1) % o.size()];
+      return Half{n.edge, n.reverse};
+    };
+    auto fid = [&](Half h) -> std::uint32_t& { return g.edges[h.edge].face[h.reverse ? 1 : 0]; };
+    for (std::uint32_t e = 0; e < g.edges.size(); ++e) {
+      for (int r = 0; r < 2; ++r) {
+        const Half start{e, r == 1};
+        if (!g.edges[e].rail && start.reverse) continue;  // outside the patch
+        if (fid(start) != kNone) continue;
+        const auto f = static_cast<std::uint32_t>(g.faces.size());
+        std::vector<Half> cycle;
+        Half h = start;
+        double twice_area = 0.0;
+        do {
+          if (fid(h) != kNone || cycle.size() > 4 * g.edges.size()) {
+            throw InternalError("mesher: the rails of " + part_.patch_label(pid) +
+                                " do not cut it into faces (a face boundary runs into itself)");
+          }
+          if (!g.edges[h.edge].rail && h.reverse) {
+            throw InternalError("mesher: a face of " + part_.patch_label(pid) +
+                                " leaves the patch (rails out of order at a boundary node)");
+          }
+          fid(h) = f;
+          cycle.push_back(h);
+          const Vec2 p = g.nodes[h.reverse ? g.edges[h.edge].b : g.edges[h.edge].a].p;
+          const Vec2 q = g.nodes[head(h)].p;
+          twice_area += cross(p, q);
+          h = next(h);
+        } while (!(h.edge == start.edge && h.reverse == start.reverse));
+        if (!(twice_area > 0.0)) {
+          throw InternalError("mesher: " + part_.patch_label(pid) +
+                              " has a region that no rail reaches (a hole's boundary not joined "
+                              "to the rest by rails)");
+        }
+        g.faces.push_back(std::move(cycle));
+      }
+    }
+  }
+
+  std::uint32_t half_count(const PatchGraph& g, Half h) const {
+    const CEdge& c = g.edges[h.edge];
+    return c.rail ? c.count : edges_[c.edge.index()].count[c.piece];
+  }
+
+  std::uint32_t face_count(const PatchGraph& g, std::size_t f) const {
+    std::uint32_t n = 0;
+    for (Half h : g.faces[f]) n += half_count(g, h);
+    return n;
+  }
+
+  // ---- 4. parity ---------------------------------------------------------------------------
+  void fix_patch_parity() {
+    const std::size_t np = part_.patches.size();
+    const std::uint32_t ground = static_cast<std::uint32_t>(np);
+    std::vector<int> odd(np + 1, 0);
+    for (std::size_t p = 0; p < np; ++p) {
+      std::uint32_t n = 0;
+      for (const CEdge& c : patches_[p].edges)
+        if (!c.rail) n += edges_[c.edge.index()].count[c.piece];
+      odd[p] = static_cast<int>(n % 2);
+    }
+    // Joins: (piece, other end); longest pieces first so a fix lands on the longest piece.
+    struct Join {
+      double length;
+      std::uint32_t edge, piece, to;
+    };
+    std::vector<std::vector<Join>> adj(np + 1);
+    for (std::size_t e = 0; e < part_.edges.size(); ++e) {
+      const BrepEdge& edge = part_.edges[e];
+      const EdgeNodes& en = edges_[e];
+      const double len = distance(part_.vertices[edge.a.index()].position,
+                                  part_.vertices[edge.b.index()].position);
+      for (std::uint32_t j = 0; j < en.count.size(); ++j) {
+        const double l = (en.t[j + 1] - en.t[j]) * len;
+        const auto e32 = static_cast<std::uint32_t>(e);
+        if (edge.patches.size() == 1) {
+          adj[edge.patches[0].index()].push_back({l, e32, j, ground});
+          adj[ground].push_back({l, e32, j, static_cast<std::uint32_t>(edge.patches[0].index())});
+        } else if (edge.patches.size() == 2) {
+          const auto p = static_cast<std::uint32_t>(edge.patches[0].index());
+          const auto q = static_cast<std::uint32_t>(edge.patches[1].index());
+          adj[p].push_back({l, e32, j, q});
+          adj[q].push_back({l, e32, j, p});
+        }
+      }
+    }
+    for (auto& a : adj)
+      std::stable_sort(a.begin(), a.end(),
+                       [](const Join& x, const Join& y) { return x.length > y.length; });
+    std::vector<std::uint32_t> parent(np + 1, kNone);
+    std::vector<const Join*> via(np + 1, nullptr);
+    std::vector<bool> seen(np + 1, false);
+    std::vector<std::uint32_t> order;
+    auto bfs = [&](std::uint32_t root) {
+      std::deque<std::uint32_t> q{root};
+      seen[root] = true;
+      while (!q.empty()) {
+        const std::uint32_t u = q.front();
+        q.pop_front();
+        order.push_back(u);
+        for (const Join& j : adj[u]) {
+          if (seen[j.to]) continue;
+          seen[j.to] = true;
+          parent[j.to] = u;
+          via[j.to] = &j;
+          q.push_back(j.to);
+        }
+      }
+    };
+    bfs(ground);
+    for (std::uint32_t p = 0; p < np; ++p)
+      if (!seen[p]) bfs(p);
+    for (auto it = order.rbegin(); it != order.rend(); ++it) {
+      const std::uint32_t u = *it;
+      if (!odd[u] || parent[u] == kNone) continue;
+      ++edges_[via[u]->edge].count[via[u]->piece];
+      ++result_.stats.parity_boundary;
+      odd[u] = 0;
+      odd[parent[u]] ^= 1;
+    }
+    for (std::uint32_t p = 0; p < np; ++p) {
+      if (odd[p]) {
+        throw InternalError(
+            "mesher: " + part_.patch_label(PatchId(p)) +
+            " has an odd number of boundary edges and no free or two-patch edge to even it "
+            "(only edges shared by three or more patches join it to the rest)");
+      }
+    }
+  }
+
+  void fix_face_parity(PatchId pid) {
+    PatchGraph& g = patches_[pid.index()];
+    const std::size_t nf = g.faces.size();
+    std::vector<int> odd(nf);
+    for (std::size_t f = 0; f < nf; ++f) odd[f] = static_cast<int>(face_count(g, f) % 2);
+    // Face adjacency through rails.
+    std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> adj(nf);  // (face, edge)
+    for (std::uint32_t e = 0; e < g.edges.size(); ++e) {
+      const CEdge& c = g.edges[e];
+      if (!c.rail || c.face[0] == c.face[1]) continue;
+      adj[c.face[0]].push_back({c.face[1], e});
+      adj[c.face[1]].push_back({c.face[0], e});
+    }
+    std::vector<std::uint32_t> from(nf), via(nf), stamp(nf, kNone);
+    for (std::uint32_t f = 0; f < nf; ++f) {
+      if (!odd[f]) continue;
+      // Breadth first to the nearest other odd face.
+      std::deque<std::uint32_t> q{f};
+      stamp[f] = f;
+      std::uint32_t found = kNone;
+      while (!q.empty() && found == kNone) {
+        const std::uint32_t u = q.front();
+        q.pop_front();
+        for (const auto& [w, e] : adj[u]) {
+          if (stamp[w] == f) continue;
+          stamp[w] = f;
+          from[w] = u;
+          via[w] = e;
+          if (odd[w]) {
+            found = w;
+            break;
+          }
+          q.push_back(w);
+        }
+      }
+      if (found == kNone) {
+        throw InternalError("mesher: a face of " + part_.patch_label(pid) +
+                            " has an odd number of edges and no odd face to pair it with");
+      }
+      for (std::uint32_t w = found; w != f; w = from[w]) {
+        ++g.edges[via[w]].count;
+        ++result_.stats.parity_rails;
+      }
+      odd[f] = 0;
+      odd[found] = 0;
+    }
+  }
+
+  // ---- 5. nodes and quads -----------------------------------------------------------------
+  void materialise_pieces() {
+    for (std::size_t e = 0; e < part_.edges.size(); ++e) {
+      EdgeNodes& en = edges_[e];
+      const BrepEdge& edge = part_.edges[e];
+      const Vec3 a = part_.vertices[edge.a.index()].position;
+      const Vec3 b = part_.vertices[edge.b.index()].position;
+      for (std::size_t j = 0; j < en.count.size(); ++j) {
+        for (std::uint32_t k = 1; k < en.count[j]; ++k) {
+          const double t = en.t[j] + (en.t[j + 1] - en.t[j]) * k / en.count[j];
+          en.inner[j].push_back(add_node(lerp3(a, b, t)));
+        }
+      }
+    }
+  }
+
+  void fill_patch(PatchId pid) {
+    const Patch& patch = part_.patches[pid.index()];
+    PatchGraph& g = patches_[pid.index()];
+    // MA nodes and rail nodes.
+    for (CNode& c : g.nodes)
+      if (c.ma) c.mesh = add_node(patch.frame.to_3d(c.p));
+    std::map<std::uint32_t, Vec2> pos2(g.boundary_2d);
+    for (CNode& c : g.nodes)
+      if (c.ma) pos2[c.mesh] = c.p;
+    for (CEdge& c : g.edges) {
+      if (!c.rail) continue;
+      for (std::uint32_t k = 1; k < c.count; ++k) {
+        const Vec2 p = lerp(g.nodes[c.a].p, g.nodes[c.b].p, static_cast<double>(k) / c.count);
+        c.inner.push_back(add_node(patch.frame.to_3d(p)));
+        pos2[c.inner.back()] = p;
+      }
+    }
+    // Boundary piece nodes in the patch frame.
+    for (const CEdge& c : g.edges) {
+      if (c.rail) continue;
+      const EdgeNodes& en = edges_[c.edge.index()];
+      const auto& inner = en.inner[c.piece];
+      for (std::size_t k = 0; k < inner.size(); ++k) {
+        const double s = static_cast<double>(k + 1) / en.count[c.piece];
+        pos2[inner[k]] =
+            lerp(g.nodes[c.a].p, g.nodes[c.b].p, c.forward ? s : 1.0 - s);
+      }
+    }
+    for (std::size_t f = 0; f < g.faces.size(); ++f) {
+      auto cycle = g.faces[f];
+      // Start at a change of kind, so that no side wraps round the cycle's start.
+      for (std::size_t k = 0; k < cycle.size(); ++k) {
+        const bool r0 = g.edges[cycle[k].edge].rail;
+        const bool r1 = g.edges[cycle[(k + cycle.size() - 1) % cycle.size()].edge].rail;
+        if (r0 != r1) {
+          std::rotate(cycle.begin(), cycle.begin() + static_cast<std::ptrdiff_t>(k), cycle.end());
+          break;
+        }
+      }
+      FaceInput in;
+      std::vector<std::uint32_t> mesh_ids;
+      auto emit = [&](std::uint32_t id) {
+        mesh_ids.push_back(id);
+        in.cycle.push_back(pos2.at(id));
+      };
+      for (std::size_t k = 0; k < cycle.size(); ++k) {
+        const Half h = cycle[k];
+        const CEdge& c = g.edges[h.edge];
+        const bool rail = c.rail;
+        const auto here = static_cast<std::uint32_t>(in.cycle.size());
+        if (in.sides.empty() || (in.sides.back().kind == FaceSide::Kind::Rail) != rail) {
+          FaceSide s;
+          s.kind = rail ? FaceSide::Kind::Rail : FaceSide::Kind::Boundary;
+          s.first = here;
+          in.sides.push_back(s);
+        } else if (rail) {
+          in.sides.back().joints.push_back(here - in.sides.back().first);
+        }
+        const std::uint32_t tail = h.reverse ? c.b : c.a;
+        emit(g.nodes[tail].mesh);
+        const std::vector<std::uint32_t>& inner =
+            rail ? c.inner : edges_[c.edge.index()].inner[c.piece];
+        // Along the half-edge: rails are stored from a to b, pieces in the edge's direction.
+        const bool backwards = rail ? h.reverse : (c.forward == h.reverse);
+        for (std::size_t i = 0; i < inner.size(); ++i)
+          emit(inner[backwards ? inner.size() - 1 - i : i]);
+        in.sides.back().edges += static_cast<std::uint32_t>(inner.size()) + 1;
+      }
+      std::ostringstream where;
+      const Vec3 x = patch.frame.to_3d(in.cycle.front());
+      where << "face " << f << " of " << part_.patch_label(pid) << " (near " << x.x << ", " << x.y
+            << ", " << x.z << ")";
+      const FaceMesh fm = fill_face(in, where.str());
+      ++result_.stats.faces;
+      ++result_.stats.by_template[static_cast<std::size_t>(fm.kind)];
+      const auto n = static_cast<std::uint32_t>(in.cycle.size());
+      std::vector<std::uint32_t>& ids = mesh_ids;
+      for (const Vec2& p : fm.interior) ids.push_back(add_node(patch.frame.to_3d(p)));
+      for (const auto& q : fm.quads) {
+        MeshElement el;
+        for (std::size_t k = 0; k < 4; ++k) el.nodes[k] = ids[q[k]];
+        el.patch = pid;
+        el.shell = static_cast<std::uint32_t>(patch.shell);
+        result_.mesh.elements.push_back(el);
+      }
+      (void)n;
+    }
+  }
+
+  const Part& part_;
+  const std::vector<MedialAxis>& axes_;
+  const CutGraph& graph_;
+  double h_;
+  QuadResult result_;
+  std::vector<std::uint32_t> vertex_node_;
+  std::vector<std::uint32_t> gcut_node_;
+  std::vector<EdgeNodes> edges_;
+  std::vector<PatchGraph> patches_;
+};
+
+}  // namespace
+
+QuadResult build_quads(const Part& part,
+                       const std::vector<MedialAxis>& axes,
+                       const CutGraph& graph,
+                       const QuadOptions& options) {
+  return QuadBuilder(part, axes, graph, options).run();
+}
+
+void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations) {
+  if (iterations <= 0) return;
+  // Nodes used by elements of several patches, or on an edge used once in a patch, stay.
+  const std::size_t nn = mesh.nodes.size();
+  std::vector<std::uint32_t> patch_of(nn, kNone);
+  std::vector<bool> fixed(nn, false);
+  for (const MeshElement& e : mesh.elements) {
+    for (std::uint32_t v : e.nodes) {
+      if (v == MeshElement::kNoNode) continue;
+      if (patch_of[v] == kNone) patch_of[v] = e.patch.value;
+      else if (patch_of[v] != e.patch.value) fixed[v] = true;
+    }
+  }
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  for (const MeshElement& e : mesh.elements)
+    for (std::size_t k = 0; k < 4; ++k) ++uses[std::minmax(e.nodes[k], e.nodes[(k + 1) % 4])];
+  for (const auto& [edge, n] : uses)
+    if (n == 1) fixed[edge.first] = fixed[edge.second] = true;
+  for (std::size_t p = 0; p < part.patches.size(); ++p) {
+    const Frame& frame = part.patches[p].frame;
+    std::vector<std::uint32_t> local(nn, kNone), global;
+    std::vector<std::array<std::uint32_t, 4>> quads;
+    for (const MeshElement& e : mesh.elements) {
+      if (e.patch.index() != p) continue;
+      std::array<std::uint32_t, 4> q{};
+      for (std::size_t k = 0; k < 4; ++k) {
+        const std::uint32_t v = e.nodes[k];
+        if (local[v] == kNone) {
+          local[v] = static_cast<std::uint32_t>(global.size());
+          global.push_back(v);
+        }
+        q[k] = local[v];
+      }
+      quads.push_back(q);
+    }
+    std::vector<Vec2> pos(global.size());
+    std::vector<bool> fix(global.size());
+    for (std::size_t i = 0; i < global.size(); ++i) {
+      pos[i] = frame.to_2d(mesh.nodes[global[i]]);
+      fix[i] = fixed[global[i]];
+    }
+    const std::vector<Vec2> before = pos;
+    smooth_nodes(pos, fix, quads, iterations);
+    for (std::size_t i = 0; i < global.size(); ++i)
+      if (pos[i] != before[i]) mesh.nodes[global[i]] = frame.to_3d(pos[i]);
+  }
+}
+
+}  // namespace laytracks

@@ -1,0 +1,71 @@
+// Private: quads inside one face of a patch cut by its rails (docs/mesher.md, "Filling a face").
+// Everything here is 2D, in the patch frame, and local to the face.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "laytracks/brep/geometry.hpp"
+
+namespace laytracks::mesher_detail {
+
+/// A run of face-boundary edges of one kind: a piece of the patch boundary, or a rail chain
+/// (one or more rail segments end to end, through MA points).
+struct FaceSide {
+  enum class Kind : std::uint8_t { Boundary, Rail };
+  Kind kind = Kind::Boundary;
+  std::uint32_t first = 0;  ///< index in the face cycle of its first node
+  std::uint32_t edges = 0;  ///< mesh edges along it
+  /// For a rail chain: cycle offsets (from `first`) of the MA points it passes inside it.
+  std::vector<std::uint32_t> joints;
+};
+
+/// The boundary of a face: its mesh nodes counter-clockwise (the face on the left), and how the
+/// cycle splits into sides. The node count is even (the parity stage sees to it).
+struct FaceInput {
+  std::vector<Vec2> cycle;
+  std::vector<FaceSide> sides;
+};
+
+enum class FillKind : std::uint8_t {
+  Grid,     ///< two rails and two boundary pieces, matching counts: a structured grid
+  Diamond,  ///< a strip whose rails differ by two edges: rows, and one quad across the axis
+  Quad,     ///< four nodes: the face itself
+  Ring,     ///< four nodes with a flat corner: an inner quad and four around it
+  Split,    ///< any other face: a coarse triangulation, each triangle split into three quads
+};
+const char* to_string(FillKind kind);
+
+/// Quads of a face. Node index i < cycle.size() is cycle node i; i >= cycle.size() is
+/// interior[i - cycle.size()]. Quads run counter-clockwise.
+struct FaceMesh {
+  FillKind kind = FillKind::Quad;
+  std::vector<Vec2> interior;
+  std::vector<std::array<std::uint32_t, 4>> quads;
+  double min_jacobian = 0.0;  ///< smallest corner scaled Jacobian of its quads
+};
+
+/// Smallest scaled Jacobian over the four corners of quad abcd (counter-clockwise > 0).
+double min_scaled_jacobian(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
+
+/// Meshes one face: the first template that applies and gives quads whose scaled Jacobian is
+/// above kAcceptJacobian wins; otherwise the best valid one. Throws InternalError (with `where`
+/// in the message) when no template gives valid quads.
+FaceMesh fill_face(const FaceInput& face, const std::string& where);
+
+/// Templates are tried in order while their worst corner is below this scaled Jacobian.
+constexpr double kAcceptJacobian = 0.3;
+
+/// Moves the interior nodes of a quad set towards the average of their neighbours, `iterations`
+/// times, never letting any quad's scaled Jacobian fall below min(its value before the move,
+/// kSmoothFloor). `fixed` says which nodes stay.
+void smooth_nodes(std::vector<Vec2>& pos,
+                  const std::vector<bool>& fixed,
+                  const std::vector<std::array<std::uint32_t, 4>>& quads,
+                  int iterations);
+
+constexpr double kSmoothFloor = 0.2;
+
+}  // namespace laytracks::mesher_detail
