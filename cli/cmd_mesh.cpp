@@ -120,7 +120,8 @@ int run_mesh(const std::vector<std::string>& argv) {
                                 {"diamond", r.stats.by_template[1]},
                                 {"quad", r.stats.by_template[2]},
                                 {"ring", r.stats.by_template[3]},
-                                {"split", r.stats.by_template[4]}};
+                                {"split", r.stats.by_template[4]},
+                                {"rows", r.stats.by_template[5]}};
     doc["parity_fixes"] = {{"boundary_pieces", r.stats.parity_boundary},
                            {"rail_segments", r.stats.parity_rails}};
     doc["seconds"] = {{"medial", r.times.medial}, {"rails", r.times.rails},

@@ -21,8 +21,7 @@ const char* const kHelp =
     "  quality PART MESH.msh  rate any MSH 4.1 mesh of the part by quality.md\n"
     "  help [COMMAND]         this text, or a command's own\n"
     "\n"
-    "The mesh and batch commands come with the mesh stage; they are not in this build yet.\n"
-    "\n"
+
     "exit status: 0 done; 1 the part was refused or could not be read (the message says what\n"
     "and where); 2 wrong command line; 3 internal error (a stage failed its own check: please\n"
     "report it with the part); 4 an output file could not be written; 5 (quality) the mesh is\n"

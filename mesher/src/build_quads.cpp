@@ -33,6 +33,12 @@ namespace {
 constexpr std::uint32_t kNone = 0xffffffffu;
 /// A boundary piece longer than this x h is split into round(length / h) mesh edges.
 constexpr double kSplitPiece = 2.0;
+/// Lengths are compared with h this much below their exact value (relative), so that a length
+/// of exactly 1.5 h gives the same count in every pose, whatever its rounding.
+constexpr double kRoundingSlack = 1e-7;
+/// A G-CUT-VERT within this x the part size of another break of its edge (or of the edge's
+/// end) is that node: ten times above the checker's closest allowed nodes.
+constexpr double kMergeBreakRel = 1e-8;
 /// Two MA points of a patch closer than this x the part size are one node.
 constexpr double kSamePointRel = 1e-9;
 
@@ -88,8 +94,7 @@ class QuadBuilder {
     make_boundary_nodes();
     patches_.resize(part_.patches.size());
     for (std::size_t p = 0; p < part_.patches.size(); ++p) build_patch_graph(PatchId(p));
-    fix_patch_parity();
-    for (std::size_t p = 0; p < part_.patches.size(); ++p) fix_face_parity(PatchId(p));
+    fix_parity();
     materialise_pieces();
     for (std::size_t p = 0; p < part_.patches.size(); ++p) fill_patch(PatchId(p));
     return std::move(result_);
@@ -129,9 +134,16 @@ class QuadBuilder {
       en.node.push_back(vertex_node_[edge.a.index()]);
       const Vec3 a = part_.vertices[edge.a.index()].position;
       const Vec3 b = part_.vertices[edge.b.index()].position;
+      const double len = distance(a, b);
+      const double merge = kMergeBreakRel * part_.size;
       for (const auto& [t, g] : br) {
-        if (en.t.size() > 1 && t == en.t.back()) {
+        // A break at (or within rounding of) the previous break or the edge's end is that node.
+        if ((t - en.t.back()) * len <= merge) {
           gcut_node_[g] = en.node.back();
+          continue;
+        }
+        if ((1.0 - t) * len <= merge) {
+          gcut_node_[g] = vertex_node_[edge.b.index()];
           continue;
         }
         en.t.push_back(t);
@@ -140,18 +152,22 @@ class QuadBuilder {
       }
       en.t.push_back(1.0);
       en.node.push_back(vertex_node_[edge.b.index()]);
-      const double len = distance(a, b);
       for (std::size_t j = 0; j + 1 < en.t.size(); ++j) {
         const double piece = (en.t[j + 1] - en.t[j]) * len;
-        en.count.push_back(piece > kSplitPiece * h_
-                               ? static_cast<std::uint32_t>(std::lround(piece / h_))
-                               : 1u);
+        en.count.push_back(piece > (kSplitPiece + kRoundingSlack) * h_ ? edges_for(piece) : 1u);
       }
       en.inner.resize(en.count.size());
     }
   }
 
   static Vec3 lerp3(Vec3 a, Vec3 b, double t) { return a + t * (b - a); }
+
+  /// Mesh edges for a length: round(length / h), at least 1, halves rounded down whatever the
+  /// last bits of the length (so every pose of a part gets the same counts).
+  std::uint32_t edges_for(double length) const {
+    const double x = length / h_;
+    return std::max<std::uint32_t>(1, static_cast<std::uint32_t>(std::floor(x + 0.5 - kRoundingSlack)));
+  }
 
   // ---- 2-3. the coarse graph and its faces ------------------------------------------------
   void build_patch_graph(PatchId pid) {
@@ -211,6 +227,9 @@ class QuadBuilder {
                             " starts at a point that is not on its boundary nodes");
       }
       const std::uint32_t a = cit->second;
+      // A rail to a convex corner, or to where the axis touches the boundary (radius 0),
+      // bounds nothing: it lies on the boundary.
+      if (distance(g.nodes[a].p, mc.point.position) <= tol || mc.point.radius <= tol) continue;
       std::uint32_t b = kNone;
       const auto mit = by_macut.find(seg.ma.value);
       if (mit != by_macut.end()) {
@@ -232,7 +251,7 @@ class QuadBuilder {
       r.b = b;
       r.rail = true;
       const double len = distance(g.nodes[a].p, g.nodes[b].p);
-      r.count = std::max<std::uint32_t>(1, static_cast<std::uint32_t>(std::lround(len / h_)));
+      r.count = edges_for(len);
       g.edges.push_back(r);
     }
     drop_dangling_rails(g);
@@ -340,130 +359,102 @@ class QuadBuilder {
   }
 
   // ---- 4. parity ---------------------------------------------------------------------------
-  void fix_patch_parity() {
-    const std::size_t np = part_.patches.size();
-    const std::uint32_t ground = static_cast<std::uint32_t>(np);
-    std::vector<int> odd(np + 1, 0);
-    for (std::size_t p = 0; p < np; ++p) {
-      std::uint32_t n = 0;
-      for (const CEdge& c : patches_[p].edges)
-        if (!c.rail) n += edges_[c.edge.index()].count[c.piece];
-      odd[p] = static_cast<int>(n % 2);
+  /// Pairs every face with an odd edge count with the nearest other odd face, or with a free
+  /// boundary piece (the "ground": a free piece changes the count of one face only), through
+  /// a graph whose links are boundary pieces (free first, then pieces of two patches) and rail
+  /// segments; every link on the path gets one more edge. Breadth first, so the path is the
+  /// shortest, and a face with a free piece of its own takes it.
+  void fix_parity() {
+    std::vector<std::uint32_t> offset(part_.patches.size() + 1, 0);
+    for (std::size_t p = 0; p < part_.patches.size(); ++p)
+      offset[p + 1] = offset[p] + static_cast<std::uint32_t>(patches_[p].faces.size());
+    const std::uint32_t nf = offset.back();
+    const std::uint32_t ground = nf;
+    // Faces of each piece (e, j): one per patch of e.
+    std::vector<std::vector<std::vector<std::uint32_t>>> piece_faces(part_.edges.size());
+    for (std::size_t e = 0; e < part_.edges.size(); ++e)
+      piece_faces[e].resize(edges_[e].count.size());
+    for (std::size_t p = 0; p < part_.patches.size(); ++p) {
+      for (const CEdge& c : patches_[p].edges) {
+        if (c.rail) continue;
+        piece_faces[c.edge.index()][c.piece].push_back(offset[p] + c.face[0]);
+      }
     }
-    // Joins: (piece, other end); longest pieces first so a fix lands on the longest piece.
-    struct Join {
-      double length;
-      std::uint32_t edge, piece, to;
+    struct Link {
+      std::uint32_t to;
+      std::uint32_t rank;  // 0 free piece, 1 two-patch piece, 2 rail
+      std::uint32_t a, b;  // piece: (edge, piece); rail: (patch, coarse edge)
     };
-    std::vector<std::vector<Join>> adj(np + 1);
-    for (std::size_t e = 0; e < part_.edges.size(); ++e) {
-      const BrepEdge& edge = part_.edges[e];
-      const EdgeNodes& en = edges_[e];
-      const double len = distance(part_.vertices[edge.a.index()].position,
-                                  part_.vertices[edge.b.index()].position);
-      for (std::uint32_t j = 0; j < en.count.size(); ++j) {
-        const double l = (en.t[j + 1] - en.t[j]) * len;
-        const auto e32 = static_cast<std::uint32_t>(e);
-        if (edge.patches.size() == 1) {
-          adj[edge.patches[0].index()].push_back({l, e32, j, ground});
-          adj[ground].push_back({l, e32, j, static_cast<std::uint32_t>(edge.patches[0].index())});
-        } else if (edge.patches.size() == 2) {
-          const auto p = static_cast<std::uint32_t>(edge.patches[0].index());
-          const auto q = static_cast<std::uint32_t>(edge.patches[1].index());
-          adj[p].push_back({l, e32, j, q});
-          adj[q].push_back({l, e32, j, p});
+    std::vector<std::vector<Link>> adj(nf + 1);
+    for (std::uint32_t e = 0; e < piece_faces.size(); ++e) {
+      for (std::uint32_t j = 0; j < piece_faces[e].size(); ++j) {
+        const auto& f = piece_faces[e][j];
+        if (f.size() == 1) {
+          adj[f[0]].push_back({ground, 0, e, j});
+          adj[ground].push_back({f[0], 0, e, j});
+        } else if (f.size() == 2 && f[0] != f[1]) {
+          adj[f[0]].push_back({f[1], 1, e, j});
+          adj[f[1]].push_back({f[0], 1, e, j});
         }
+      }
+    }
+    for (std::uint32_t p = 0; p < part_.patches.size(); ++p) {
+      const PatchGraph& g = patches_[p];
+      for (std::uint32_t e = 0; e < g.edges.size(); ++e) {
+        const CEdge& c = g.edges[e];
+        if (!c.rail || c.face[0] == c.face[1]) continue;
+        adj[offset[p] + c.face[0]].push_back({offset[p] + c.face[1], 2, p, e});
+        adj[offset[p] + c.face[1]].push_back({offset[p] + c.face[0], 2, p, e});
       }
     }
     for (auto& a : adj)
       std::stable_sort(a.begin(), a.end(),
-                       [](const Join& x, const Join& y) { return x.length > y.length; });
-    std::vector<std::uint32_t> parent(np + 1, kNone);
-    std::vector<const Join*> via(np + 1, nullptr);
-    std::vector<bool> seen(np + 1, false);
-    std::vector<std::uint32_t> order;
-    auto bfs = [&](std::uint32_t root) {
-      std::deque<std::uint32_t> q{root};
-      seen[root] = true;
-      while (!q.empty()) {
-        const std::uint32_t u = q.front();
-        q.pop_front();
-        order.push_back(u);
-        for (const Join& j : adj[u]) {
-          if (seen[j.to]) continue;
-          seen[j.to] = true;
-          parent[j.to] = u;
-          via[j.to] = &j;
-          q.push_back(j.to);
-        }
-      }
-    };
-    bfs(ground);
-    for (std::uint32_t p = 0; p < np; ++p)
-      if (!seen[p]) bfs(p);
-    for (auto it = order.rbegin(); it != order.rend(); ++it) {
-      const std::uint32_t u = *it;
-      if (!odd[u] || parent[u] == kNone) continue;
-      ++edges_[via[u]->edge].count[via[u]->piece];
-      ++result_.stats.parity_boundary;
-      odd[u] = 0;
-      odd[parent[u]] ^= 1;
-    }
-    for (std::uint32_t p = 0; p < np; ++p) {
-      if (odd[p]) {
-        throw InternalError(
-            "mesher: " + part_.patch_label(PatchId(p)) +
-            " has an odd number of boundary edges and no free or two-patch edge to even it "
-            "(only edges shared by three or more patches join it to the rest)");
-      }
-    }
-  }
-
-  void fix_face_parity(PatchId pid) {
-    PatchGraph& g = patches_[pid.index()];
-    const std::size_t nf = g.faces.size();
-    std::vector<int> odd(nf);
-    for (std::size_t f = 0; f < nf; ++f) odd[f] = static_cast<int>(face_count(g, f) % 2);
-    // Face adjacency through rails.
-    std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> adj(nf);  // (face, edge)
-    for (std::uint32_t e = 0; e < g.edges.size(); ++e) {
-      const CEdge& c = g.edges[e];
-      if (!c.rail || c.face[0] == c.face[1]) continue;
-      adj[c.face[0]].push_back({c.face[1], e});
-      adj[c.face[1]].push_back({c.face[0], e});
-    }
-    std::vector<std::uint32_t> from(nf), via(nf), stamp(nf, kNone);
+                       [](const Link& x, const Link& y) { return x.rank < y.rank; });
+    std::vector<int> odd(nf + 1, 0);
+    for (std::uint32_t p = 0; p < part_.patches.size(); ++p)
+      for (std::uint32_t f = 0; f < patches_[p].faces.size(); ++f)
+        odd[offset[p] + f] = static_cast<int>(face_count(patches_[p], f) % 2);
+    std::vector<std::uint32_t> from(nf + 1), stamp(nf + 1, kNone);
+    std::vector<const Link*> via(nf + 1, nullptr);
     for (std::uint32_t f = 0; f < nf; ++f) {
       if (!odd[f]) continue;
-      // Breadth first to the nearest other odd face.
       std::deque<std::uint32_t> q{f};
       stamp[f] = f;
       std::uint32_t found = kNone;
       while (!q.empty() && found == kNone) {
         const std::uint32_t u = q.front();
         q.pop_front();
-        for (const auto& [w, e] : adj[u]) {
-          if (stamp[w] == f) continue;
-          stamp[w] = f;
-          from[w] = u;
-          via[w] = e;
-          if (odd[w]) {
-            found = w;
+        for (const Link& l : adj[u]) {
+          if (stamp[l.to] == f) continue;
+          stamp[l.to] = f;
+          from[l.to] = u;
+          via[l.to] = &l;
+          if (l.to == ground || odd[l.to]) {
+            found = l.to;
             break;
           }
-          q.push_back(w);
+          if (l.to != ground) q.push_back(l.to);
         }
       }
       if (found == kNone) {
-        throw InternalError("mesher: a face of " + part_.patch_label(pid) +
-                            " has an odd number of edges and no odd face to pair it with");
+        std::uint32_t p = 0;
+        while (offset[p + 1] <= f) ++p;
+        throw InternalError("mesher: a face of " + part_.patch_label(PatchId(p)) +
+                            " has an odd number of edges and nothing to pair it with (only "
+                            "edges shared by three or more patches join it to the rest)");
       }
       for (std::uint32_t w = found; w != f; w = from[w]) {
-        ++g.edges[via[w]].count;
-        ++result_.stats.parity_rails;
+        const Link& l = *via[w];
+        if (l.rank == 2) {
+          ++patches_[l.a].edges[l.b].count;
+          ++result_.stats.parity_rails;
+        } else {
+          ++edges_[l.a].count[l.b];
+          ++result_.stats.parity_boundary;
+        }
       }
       odd[f] = 0;
-      odd[found] = 0;
+      if (found != ground) odd[found] = 0;
     }
   }
 
@@ -487,11 +478,13 @@ class QuadBuilder {
     const Patch& patch = part_.patches[pid.index()];
     PatchGraph& g = patches_[pid.index()];
     // MA nodes and rail nodes.
-    for (CNode& c : g.nodes)
-      if (c.ma) c.mesh = add_node(patch.frame.to_3d(c.p));
+    std::vector<bool> used(g.nodes.size(), false);
+    for (const CEdge& c : g.edges) used[c.a] = used[c.b] = true;
+    for (std::size_t i = 0; i < g.nodes.size(); ++i)
+      if (g.nodes[i].ma && used[i]) g.nodes[i].mesh = add_node(patch.frame.to_3d(g.nodes[i].p));
     std::map<std::uint32_t, Vec2> pos2(g.boundary_2d);
-    for (CNode& c : g.nodes)
-      if (c.ma) pos2[c.mesh] = c.p;
+    for (const CNode& c : g.nodes)
+      if (c.ma && c.mesh != kNone) pos2[c.mesh] = c.p;
     for (CEdge& c : g.edges) {
       if (!c.rail) continue;
       for (std::uint32_t k = 1; k < c.count; ++k) {
@@ -513,11 +506,13 @@ class QuadBuilder {
     }
     for (std::size_t f = 0; f < g.faces.size(); ++f) {
       auto cycle = g.faces[f];
-      // Start at a change of kind, so that no side wraps round the cycle's start.
+      // Start where a side starts, so that no side wraps round the cycle's start.
       for (std::size_t k = 0; k < cycle.size(); ++k) {
-        const bool r0 = g.edges[cycle[k].edge].rail;
+        const Half hk = cycle[k];
+        const bool r0 = g.edges[hk.edge].rail;
         const bool r1 = g.edges[cycle[(k + cycle.size() - 1) % cycle.size()].edge].rail;
-        if (r0 != r1) {
+        const std::uint32_t tail = hk.reverse ? g.edges[hk.edge].b : g.edges[hk.edge].a;
+        if (r0 != r1 || (r0 && !g.nodes[tail].ma)) {
           std::rotate(cycle.begin(), cycle.begin() + static_cast<std::ptrdiff_t>(k), cycle.end());
           break;
         }
@@ -533,15 +528,23 @@ class QuadBuilder {
         const CEdge& c = g.edges[h.edge];
         const bool rail = c.rail;
         const auto here = static_cast<std::uint32_t>(in.cycle.size());
-        if (in.sides.empty() || (in.sides.back().kind == FaceSide::Kind::Rail) != rail) {
+        const std::uint32_t tail = h.reverse ? c.b : c.a;
+        auto open_side = [&](FaceSide::Kind kind) {
           FaceSide s;
-          s.kind = rail ? FaceSide::Kind::Rail : FaceSide::Kind::Boundary;
+          s.kind = kind;
           s.first = here;
           in.sides.push_back(s);
-        } else if (rail) {
+        };
+        if (in.sides.empty() || (in.sides.back().kind == FaceSide::Kind::Rail) != rail) {
+          open_side(rail ? FaceSide::Kind::Rail : FaceSide::Kind::Boundary);
+        } else if (rail && g.nodes[tail].ma) {
           in.sides.back().joints.push_back(here - in.sides.back().first);
+        } else if (rail) {
+          // Two rails meeting at a boundary node (a concave corner's fan): a boundary side
+          // without an edge between them.
+          open_side(FaceSide::Kind::Boundary);
+          open_side(FaceSide::Kind::Rail);
         }
-        const std::uint32_t tail = h.reverse ? c.b : c.a;
         emit(g.nodes[tail].mesh);
         const std::vector<std::uint32_t>& inner =
             rail ? c.inner : edges_[c.edge.index()].inner[c.piece];

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <map>
@@ -24,6 +25,8 @@ const char* to_string(FillKind kind) {
       return "ring";
     case FillKind::Split:
       return "split";
+    case FillKind::Rows:
+      return "rows";
   }
   return "?";
 }
@@ -44,6 +47,7 @@ double min_scaled_jacobian(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
 namespace {
 
 using Quad = std::array<std::uint32_t, 4>;
+constexpr std::uint32_t kNoId = 0xffffffffu;
 
 /// A face being meshed: its cycle, interior nodes appended, quads.
 struct Builder {
@@ -65,6 +69,12 @@ struct Builder {
   void quad(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
     out.quads.push_back({a, b, c, d});
   }
+  /// A quad given as a cycle in either direction: stored counter-clockwise.
+  void quad_ccw(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+    const double twice = cross(pos(b) - pos(a), pos(c) - pos(a)) + cross(pos(c) - pos(a), pos(d) - pos(a));
+    if (twice >= 0.0) quad(a, b, c, d);
+    else quad(a, d, c, b);
+  }
   FaceMesh finish() {
     out.min_jacobian = std::numeric_limits<double>::infinity();
     for (const Quad& q : out.quads) {
@@ -83,6 +93,7 @@ void relax(FaceMesh& m, const FaceInput& face, int iterations) {
   std::vector<bool> fixed(pos.size(), false);
   std::fill(fixed.begin(), fixed.begin() + static_cast<std::ptrdiff_t>(face.cycle.size()), true);
   smooth_nodes(pos, fixed, m.quads, iterations);
+  untangle_nodes(pos, fixed, m.quads, iterations);
   std::copy(pos.begin() + static_cast<std::ptrdiff_t>(face.cycle.size()), pos.end(),
             m.interior.begin());
   m.min_jacobian = std::numeric_limits<double>::infinity();
@@ -92,44 +103,89 @@ void relax(FaceMesh& m, const FaceInput& face, int iterations) {
   }
 }
 
-/// The four sides of a strip (boundary, rail, boundary, rail), starting at a boundary side.
-std::optional<std::array<const FaceSide*, 4>> strip_sides(const FaceInput& face) {
-  if (face.sides.size() != 4) return std::nullopt;
-  for (std::size_t s = 0; s < 2; ++s) {
-    std::array<const FaceSide*, 4> r{};
-    for (std::size_t k = 0; k < 4; ++k) r[k] = &face.sides[(s + k) % 4];
-    if (r[0]->kind == FaceSide::Kind::Boundary && r[1]->kind == FaceSide::Kind::Rail &&
-        r[2]->kind == FaceSide::Kind::Boundary && r[3]->kind == FaceSide::Kind::Rail)
-      return r;
-  }
-  return std::nullopt;
+/// A face seen as a strip: cap1 (boundary), rail1, cap2 (boundary, possibly a single node),
+/// rail2, each a list of cycle indices in counter-clockwise order, consecutive lists sharing
+/// their end nodes. Joints are indices into rail1 / rail2 of MA points inside them.
+struct Strip {
+  std::vector<std::uint32_t> cap1, rail1, cap2, rail2;
+  std::vector<std::uint32_t> joints1, joints2;
+};
+
+std::vector<std::uint32_t> run_of(const FaceInput& face, std::uint32_t first, std::uint32_t edges) {
+  std::vector<std::uint32_t> r;
+  const auto n = static_cast<std::uint32_t>(face.cycle.size());
+  for (std::uint32_t k = 0; k <= edges; ++k) r.push_back((first + k) % n);
+  return r;
 }
 
-/// Grid: boundary pieces of b edges each, rails of m edges each; transfinite interpolation
-/// between the four sides, rows of quads from one boundary piece to the other.
-std::optional<FaceMesh> fill_grid(const FaceInput& face) {
-  const auto sides = strip_sides(face);
-  if (!sides) return std::nullopt;
-  const FaceSide& b1 = *(*sides)[0];
-  const FaceSide& r1 = *(*sides)[1];
-  const FaceSide& b2 = *(*sides)[2];
-  const FaceSide& r2 = *(*sides)[3];
-  if (b1.edges != b2.edges || r1.edges != r2.edges) return std::nullopt;
+/// The strips a face can be read as: four sides boundary, rail, boundary, rail (a boundary
+/// side may have no edge: two rails meeting at a boundary node, a concave corner's fan); or a
+/// boundary side and one rail chain through one MA point where both halves meet (a wedge:
+/// rails of a rounded corner or a branch point), cap2 then being that point.
+std::vector<Strip> strips_of(const FaceInput& face) {
+  std::vector<Strip> out;
+  const auto& sd = face.sides;
+  using K = FaceSide::Kind;
+  if (sd.size() == 4) {
+    for (std::size_t s = 0; s < 2; ++s) {
+      const FaceSide& a = sd[s];
+      const FaceSide& b = sd[s + 1];
+      const FaceSide& c = sd[(s + 2) % 4];
+      const FaceSide& d = sd[(s + 3) % 4];
+      if (a.kind != K::Boundary || b.kind != K::Rail || c.kind != K::Boundary || d.kind != K::Rail)
+        continue;
+      Strip st{run_of(face, a.first, a.edges), run_of(face, b.first, b.edges),
+               run_of(face, c.first, c.edges), run_of(face, d.first, d.edges), b.joints, d.joints};
+      out.push_back(st);
+      // The same strip read from the other cap.
+      Strip sw{st.cap2, st.rail2, st.cap1, st.rail1, d.joints, b.joints};
+      out.push_back(sw);
+    }
+  } else if (sd.size() == 2) {
+    for (std::size_t s = 0; s < 2; ++s) {
+      const FaceSide& a = sd[s];
+      const FaceSide& b = sd[1 - s];
+      if (a.kind != K::Boundary || b.kind != K::Rail || b.joints.empty()) continue;
+      // The apex: the joint that splits the rail chain most evenly.
+      std::uint32_t apex = b.joints.front();
+      for (std::uint32_t j : b.joints)
+        if (std::abs(2.0 * j - b.edges) < std::abs(2.0 * apex - b.edges)) apex = j;
+      Strip st;
+      st.cap1 = run_of(face, a.first, a.edges);
+      st.rail1 = run_of(face, b.first, apex);
+      st.cap2 = {st.rail1.back()};
+      st.rail2 = run_of(face, st.rail1.back(), b.edges - apex);
+      for (std::uint32_t j : b.joints) {
+        if (j < apex) st.joints1.push_back(j);
+        if (j > apex) st.joints2.push_back(j - apex);
+      }
+      out.push_back(st);
+    }
+  }
+  return out;
+}
+
+/// Grid: caps of b edges each, rails of m edges each; transfinite interpolation between the
+/// four sides, rows of quads from one cap to the other. With a one-node cap2 (a wedge) and an
+/// even b, the last row folds into b / 2 quads round that node.
+std::optional<FaceMesh> fill_grid(const FaceInput& face, const Strip& st) {
+  const auto b = static_cast<std::uint32_t>(st.cap1.size() - 1);
+  const auto h = static_cast<std::uint32_t>(st.rail1.size() - 1);
+  const bool wedge = st.cap2.size() == 1;
+  if (b == 0 || h != st.rail2.size() - 1) return std::nullopt;
+  if (wedge ? (b % 2 != 0 || h < 2) : st.cap2.size() != st.cap1.size()) return std::nullopt;
   Builder m(face, FillKind::Grid);
-  const std::uint32_t b = b1.edges;
-  const std::uint32_t h = r1.edges;
-  // Grid node (i, j), i along b1 (0..b), j along r1 (0..h).
-  std::vector<std::uint32_t> id((b + 1) * (h + 1));
+  // Grid node (i, j), i along cap1 (0..b), j along rail1 (0..h).
+  std::vector<std::uint32_t> id((b + 1) * (h + 1), kNoId);
   auto g = [&](std::uint32_t i, std::uint32_t j) -> std::uint32_t& { return id[j * (b + 1) + i]; };
   for (std::uint32_t i = 0; i <= b; ++i) {
-    g(i, 0) = m.at(b1.first, i);
-    g(i, h) = m.at(b2.first, b - i);
+    g(i, 0) = st.cap1[i];
+    if (!wedge) g(i, h) = st.cap2[b - i];
   }
   for (std::uint32_t j = 0; j <= h; ++j) {
-    g(b, j) = m.at(r1.first, j);
-    g(0, j) = m.at(r2.first, h - j);
+    g(b, j) = st.rail1[j];
+    g(0, j) = st.rail2[h - j];
   }
-  // Parameters by arc length along each side, blended (so uneven spacing carries inwards).
   auto arc = [&](auto node_of, std::uint32_t count) {
     std::vector<double> t(count + 1, 0.0);
     for (std::uint32_t k = 1; k <= count; ++k)
@@ -137,59 +193,77 @@ std::optional<FaceMesh> fill_grid(const FaceInput& face) {
     for (double& x : t) x = t[count] > 0.0 ? x / t[count] : 0.0;
     return t;
   };
+  const Vec2 apex = m.pos(st.cap2.front());
+  auto top = [&](std::uint32_t i) { return wedge ? apex : m.pos(g(i, h)); };
   const auto u0 = arc([&](std::uint32_t i) { return g(i, 0); }, b);
-  const auto u1 = arc([&](std::uint32_t i) { return g(i, h); }, b);
+  std::vector<double> u1 = u0;
+  if (!wedge) u1 = arc([&](std::uint32_t i) { return g(i, h); }, b);
   const auto v0 = arc([&](std::uint32_t j) { return g(0, j); }, h);
   const auto v1 = arc([&](std::uint32_t j) { return g(b, j); }, h);
-  const Vec2 c00 = m.pos(g(0, 0)), c10 = m.pos(g(b, 0)), c01 = m.pos(g(0, h)), c11 = m.pos(g(b, h));
+  const Vec2 c00 = m.pos(g(0, 0)), c10 = m.pos(g(b, 0)), c01 = top(0), c11 = top(b);
   for (std::uint32_t j = 1; j < h; ++j) {
     for (std::uint32_t i = 1; i < b; ++i) {
-      // Intersection of the blended parameter lines (the usual two-step approximation).
-      const double u = (u0[i] * (1.0 - v0[j]) + u1[i] * v0[j]);
-      const double v = (v0[j] * (1.0 - u) + v1[j] * u);
-      const Vec2 p = (1.0 - v) * m.pos(g(i, 0)) + v * m.pos(g(i, h)) + (1.0 - u) * m.pos(g(0, j)) +
+      const double u = u0[i] * (1.0 - v0[j]) + u1[i] * v0[j];
+      const double v = v0[j] * (1.0 - u) + v1[j] * u;
+      const Vec2 p = (1.0 - v) * m.pos(g(i, 0)) + v * top(i) + (1.0 - u) * m.pos(g(0, j)) +
                      u * m.pos(g(b, j)) -
                      ((1.0 - u) * (1.0 - v) * c00 + u * (1.0 - v) * c10 + (1.0 - u) * v * c01 +
                       u * v * c11);
       g(i, j) = m.add(p);
     }
   }
-  for (std::uint32_t j = 0; j < h; ++j)
+  const std::uint32_t rows = wedge ? h - 1 : h;
+  for (std::uint32_t j = 0; j < rows; ++j)
     for (std::uint32_t i = 0; i < b; ++i) m.quad(g(i, j), g(i + 1, j), g(i + 1, j + 1), g(i, j + 1));
+  if (wedge) {
+    for (std::uint32_t i = 0; i < b; i += 2)
+      m.quad(g(i, h - 1), g(i + 1, h - 1), g(i + 2, h - 1), st.cap2.front());
+  }
   FaceMesh r = m.finish();
-  if (!r.interior.empty() && r.min_jacobian < kAcceptJacobian) relax(r, face, 20);
+  if (!r.interior.empty() && r.min_jacobian < kAcceptJacobian) relax(r, face, 30);
   return r;
 }
 
-/// Diamond: a strip with one-edge boundary pieces whose rails differ by two edges, the longer
-/// one bending at an MA point. Rows of quads from both boundary pieces meet at that MA point,
-/// where one quad spans the axis (the paper's two triangles merged across the MA).
-std::optional<FaceMesh> fill_diamond(const FaceInput& face) {
-  const auto sides = strip_sides(face);
-  if (!sides) return std::nullopt;
-  for (int flip = 0; flip < 2; ++flip) {
-    // Rotate so that the long rail is r1: the order is b1, r1, b2, r2 either way.
-    const FaceSide& b1 = *(*sides)[flip ? 2 : 0];
-    const FaceSide& r1 = *(*sides)[flip ? 3 : 1];
-    const FaceSide& b2 = *(*sides)[flip ? 0 : 2];
-    const FaceSide& r2 = *(*sides)[flip ? 1 : 3];
-    if (b1.edges != 1 || b2.edges != 1 || r1.edges != r2.edges + 2) continue;
+/// Diamond: caps of one edge, rails differing by 2d edges, the longer bending at an MA point.
+/// Rows from both caps end on one node of the short rail (the apex); between it and the bend,
+/// d - 1 nodes on the segment apex-bend carry 2(d - 1) quads, and one quad spans the axis at
+/// the bend (the paper's two triangles merged across the MA).
+std::optional<FaceMesh> fill_diamond(const FaceInput& face, const Strip& st) {
+  if (st.cap1.size() != 2 || st.cap2.size() != 2) return std::nullopt;
+  const auto n1 = static_cast<std::uint32_t>(st.rail1.size() - 1);
+  const auto n2 = static_cast<std::uint32_t>(st.rail2.size() - 1);
+  if (n1 <= n2 || (n1 - n2) % 2 != 0) return std::nullopt;
+  const std::uint32_t d = (n1 - n2) / 2;
+  std::optional<FaceMesh> best;
+  for (std::uint32_t jj : st.joints1) {
+    if (jj < d || n1 - jj < d) continue;
     Builder m(face, FillKind::Diamond);
-    const std::uint32_t n1 = r1.edges, n2 = r2.edges;
-    for (std::uint32_t joint : r1.joints) {
-      if (joint < 1 || joint + 1 > n1) continue;
-      auto a = [&](std::uint32_t k) { return m.at(r1.first, k); };       // long rail, up
-      auto l = [&](std::uint32_t k) { return m.at(r2.first, n2 - k); };  // short rail, up
-      const std::uint32_t jj = joint;
-      for (std::uint32_t k = 0; k + 1 < jj; ++k) m.quad(l(k), a(k), a(k + 1), l(k + 1));
-      m.quad(l(jj - 1), a(jj - 1), a(jj), a(jj + 1));
-      for (std::uint32_t k = 0; jj + 1 + k < n1; ++k)
-        m.quad(l(jj - 1 + k), a(jj + 1 + k), a(jj + 2 + k), l(jj + k));
-      return m.finish();
+    auto R = [&](std::uint32_t k) { return st.rail1[k]; };
+    auto L = [&](std::uint32_t k) { return st.rail2[n2 - k]; };  // the short rail, upwards
+    const std::uint32_t k1 = jj - d;
+    const std::uint32_t k2 = n1 - jj - d;
+    for (std::uint32_t k = 0; k < k1; ++k) m.quad(L(k), R(k), R(k + 1), L(k + 1));
+    for (std::uint32_t k = 0; k < k2; ++k)
+      m.quad(L(n2 - k - 1), R(n1 - k - 1), R(n1 - k), L(n2 - k));
+    std::vector<std::uint32_t> y{L(k1)};
+    for (std::uint32_t k = 1; k < d; ++k)
+      y.push_back(m.add(lerp(m.pos(L(k1)), m.pos(R(jj)), static_cast<double>(k) / d)));
+    for (std::uint32_t k = 0; k + 1 < d; ++k) {
+      m.quad_ccw(y[k], R(k1 + k), R(k1 + k + 1), y[k + 1]);
+      m.quad_ccw(y[k], R(n1 - k2 - k), R(n1 - k2 - k - 1), y[k + 1]);
     }
+    m.quad_ccw(y[d - 1], R(jj - 1), R(jj), R(jj + 1));
+    FaceMesh r = m.finish();
+    if (!r.interior.empty() && r.min_jacobian < kAcceptJacobian) relax(r, face, 30);
+    if (!best || r.min_jacobian > best->min_jacobian) best = std::move(r);
   }
-  return std::nullopt;
+  return best;
 }
+
+/// Rows and a remainder: from a one-edge cap, K rows of quads join node k of one rail to node k
+/// of the other; what is left near the other cap (unequal rails, a fan's corner) is a small
+/// polygon meshed by the other templates. Tries the K that gives the best quads.
+std::optional<FaceMesh> fill_rows(const FaceInput& face, const Strip& st, int depth);
 
 /// Four nodes: the face itself is the quad.
 FaceMesh fill_quad(const FaceInput& face) {
@@ -227,46 +301,89 @@ double triangle_shape(Vec2 a, Vec2 b, Vec2 c) {
   return worst;
 }
 
-bool strictly_inside(Vec2 p, Vec2 a, Vec2 b, Vec2 c) {
-  return cross(b - a, p - a) > 0.0 && cross(c - b, p - b) > 0.0 && cross(a - c, p - c) > 0.0;
+
+/// True when the open segments pq and rs cross or touch (a shared end point does not count).
+bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t) {
+  if (p == r || p == t || q == r || q == t) return false;
+  const double d1 = cross(q - p, r - p), d2 = cross(q - p, t - p);
+  const double d3 = cross(t - r, p - r), d4 = cross(t - r, q - r);
+  return ((d1 <= 0.0 && d2 >= 0.0) || (d1 >= 0.0 && d2 <= 0.0)) &&
+         ((d3 <= 0.0 && d4 >= 0.0) || (d3 >= 0.0 && d4 <= 0.0));
 }
 
-/// Ear clipping of a simple counter-clockwise polygon, best-shaped ear first. Indices into
-/// `poly`. Empty when it finds no ear (a polygon that is not simple).
-std::vector<std::array<std::uint32_t, 3>> triangulate(const std::vector<Vec2>& poly) {
-  std::vector<std::uint32_t> left(poly.size());
-  for (std::uint32_t i = 0; i < left.size(); ++i) left[i] = i;
-  std::vector<std::array<std::uint32_t, 3>> tris;
-  while (left.size() > 3) {
-    const std::size_t m = left.size();
-    double best = 0.0;
-    std::size_t pick = m;
-    for (std::size_t i = 0; i < m; ++i) {
-      const std::uint32_t a = left[(i + m - 1) % m], b = left[i], c = left[(i + 1) % m];
-      const double shape = triangle_shape(poly[a], poly[b], poly[c]);
-      if (shape <= best) continue;
-      bool empty = true;
-      for (std::size_t k = 0; k < m && empty; ++k) {
-        const std::uint32_t q = left[k];
-        if (q == a || q == b || q == c) continue;
-        if (strictly_inside(poly[q], poly[a], poly[b], poly[c])) empty = false;
-        // A vertex on the diagonal ac blocks it too.
-        const Vec2 d = poly[c] - poly[a];
-        const double along = dot(poly[q] - poly[a], d);
-        if (empty && std::abs(cross(d, poly[q] - poly[a])) <= 1e-12 * dot(d, d) && along > 0.0 &&
-            along < dot(d, d))
-          empty = false;
-      }
-      if (!empty) continue;
-      best = shape;
-      pick = i;
-    }
-    if (pick == m) return {};
-    tris.push_back({left[(pick + m - 1) % m], left[pick], left[(pick + 1) % m]});
-    left.erase(left.begin() + static_cast<std::ptrdiff_t>(pick));
+bool inside_polygon(Vec2 x, const std::vector<Vec2>& poly) {
+  bool in = false;
+  for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
+    if ((poly[i].y > x.y) != (poly[j].y > x.y) &&
+        x.x < poly[j].x + (x.y - poly[j].y) * (poly[i].x - poly[j].x) / (poly[i].y - poly[j].y))
+      in = !in;
   }
-  if (triangle_shape(poly[left[0]], poly[left[1]], poly[left[2]]) <= 0.0) return {};
-  tris.push_back({left[0], left[1], left[2]});
+  return in;
+}
+
+/// The triangulation of a simple counter-clockwise polygon that maximises the smallest
+/// `score(a, b, c)` of its triangles (dynamic programming over diagonals, O(m^3)). Indices
+/// into `poly`; empty when the polygon has no triangulation with positive triangles.
+template <class Score>
+std::vector<std::array<std::uint32_t, 3>> triangulate(const std::vector<Vec2>& poly, Score score) {
+  const auto m = static_cast<std::uint32_t>(poly.size());
+  if (m < 3) return {};
+  const double kNone = -std::numeric_limits<double>::infinity();
+  // ok(i, j): i < j, the segment is a polygon edge or a diagonal inside the polygon.
+  std::vector<char> ok(m * m, 0);
+  for (std::uint32_t i = 0; i < m; ++i) {
+    for (std::uint32_t j = i + 1; j < m; ++j) {
+      if (j == i + 1 || (i == 0 && j == m - 1)) {
+        ok[i * m + j] = 1;
+        continue;
+      }
+      bool good = inside_polygon(lerp(poly[i], poly[j], 0.5), poly);
+      for (std::uint32_t k = 0; k < m && good; ++k) {
+        const std::uint32_t l = (k + 1) % m;
+        if (segments_meet(poly[i], poly[j], poly[k], poly[l])) good = false;
+        // A vertex lying on the diagonal blocks it.
+        if (k != i && k != j) {
+          const Vec2 d = poly[j] - poly[i];
+          const double along = dot(poly[k] - poly[i], d);
+          if (std::abs(cross(d, poly[k] - poly[i])) <= 1e-12 * dot(d, d) && along > 0.0 &&
+              along < dot(d, d))
+            good = false;
+        }
+      }
+      ok[i * m + j] = good ? 1 : 0;
+    }
+  }
+  std::vector<double> best(m * m, kNone);
+  std::vector<std::uint32_t> split(m * m, 0);
+  for (std::uint32_t i = 0; i + 1 < m; ++i) best[i * m + i + 1] = std::numeric_limits<double>::infinity();
+  for (std::uint32_t len = 2; len < m; ++len) {
+    for (std::uint32_t i = 0; i + len < m; ++i) {
+      const std::uint32_t j = i + len;
+      if (!ok[i * m + j]) continue;
+      for (std::uint32_t k = i + 1; k < j; ++k) {
+        const double left = best[i * m + k], right = best[k * m + j];
+        if (left == kNone || right == kNone) continue;
+        if (triangle_shape(poly[i], poly[k], poly[j]) <= 0.0) continue;
+        const double v = std::min({left, right, score(i, k, j)});
+        if (v > best[i * m + j]) {
+          best[i * m + j] = v;
+          split[i * m + j] = k;
+        }
+      }
+    }
+  }
+  if (best[m - 1] == kNone) return {};
+  std::vector<std::array<std::uint32_t, 3>> tris;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> todo{{0u, m - 1}};
+  while (!todo.empty()) {
+    const auto [i, j] = todo.back();
+    todo.pop_back();
+    if (j == i + 1) continue;
+    const std::uint32_t k = split[i * m + j];
+    tris.push_back({i, k, j});
+    todo.push_back({i, k});
+    todo.push_back({k, j});
+  }
   return tris;
 }
 
@@ -279,10 +396,25 @@ std::optional<FaceMesh> fill_split(const FaceInput& face, std::uint32_t offset) 
   if (n < 6 || n % 2 != 0) return std::nullopt;
   std::vector<Vec2> coarse;
   for (std::uint32_t k = 0; k < n / 2; ++k) coarse.push_back(face.cycle[(offset + 2 * k) % n]);
-  const auto tris = triangulate(coarse);
+  const std::uint32_t half = n / 2;
+  // Where the middle node of coarse edge ij is: the face node between them on the boundary,
+  // else the midpoint of the diagonal.
+  auto mid_at = [&](std::uint32_t i, std::uint32_t j) -> Vec2 {
+    if ((i + 1) % half == j) return face.cycle[(offset + 2 * i + 1) % n];
+    if ((j + 1) % half == i) return face.cycle[(offset + 2 * j + 1) % n];
+    return lerp(coarse[i], coarse[j], 0.5);
+  };
+  // An ear scores the worst of the three quads it will be split into.
+  auto score = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    const Vec2 ab = mid_at(a, b), bc = mid_at(b, c), ca = mid_at(c, a);
+    const Vec2 g = (1.0 / 6.0) * (coarse[a] + coarse[b] + coarse[c] + ab + bc + ca);
+    return std::min({min_scaled_jacobian(coarse[a], ab, g, ca),
+                     min_scaled_jacobian(coarse[b], bc, g, ab),
+                     min_scaled_jacobian(coarse[c], ca, g, bc)});
+  };
+  const auto tris = triangulate(coarse, score);
   if (tris.empty()) return std::nullopt;
   Builder m(face, FillKind::Split);
-  const std::uint32_t half = n / 2;
   auto node = [&](std::uint32_t k) { return (offset + 2 * k) % n; };
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mids;
   auto mid = [&](std::uint32_t i, std::uint32_t j) -> std::uint32_t {
@@ -309,6 +441,109 @@ std::optional<FaceMesh> fill_split(const FaceInput& face, std::uint32_t offset) 
   return r;
 }
 
+/// Fan split: like split, but the coarse polygon is triangulated as a fan round one interior
+/// point (the mean of the face's nodes, then moved by the untangler), so that every coarse
+/// node, flat or reflex, gets two quads. For star-shaped faces that split cannot do (an L
+/// whose flat nodes would all need a diagonal).
+std::optional<FaceMesh> fill_fan_split(const FaceInput& face, std::uint32_t offset) {
+  const auto n = static_cast<std::uint32_t>(face.cycle.size());
+  if (n < 6 || n % 2 != 0) return std::nullopt;
+  const std::uint32_t half = n / 2;
+  Builder m(face, FillKind::Split);
+  Vec2 c{0.0, 0.0};
+  for (const Vec2& p : face.cycle) c = c + (1.0 / n) * p;
+  const std::uint32_t centre = m.add(c);
+  std::vector<std::uint32_t> spoke(half);  // midpoint of centre - coarse node k
+  for (std::uint32_t k = 0; k < half; ++k)
+    spoke[k] = m.add(lerp(c, face.cycle[(offset + 2 * k) % n], 0.5));
+  for (std::uint32_t k = 0; k < half; ++k) {
+    const std::uint32_t a = (offset + 2 * k) % n, mid = (a + 1) % n, b = (a + 2) % n;
+    const std::uint32_t kb = (k + 1) % half;
+    const Vec2 g = (1.0 / 6.0) * (c + face.cycle[a] + face.cycle[b] + face.cycle[mid] +
+                                  m.pos(spoke[k]) + m.pos(spoke[kb]));
+    const std::uint32_t t = m.add(g);
+    m.quad(a, mid, t, spoke[k]);
+    m.quad(b, spoke[kb], t, mid);
+    m.quad(centre, spoke[k], t, spoke[kb]);
+  }
+  FaceMesh r = m.finish();
+  relax(r, face, 60);
+  return r;
+}
+
+std::optional<FaceMesh> fill_any(const FaceInput& face, int depth);
+
+std::optional<FaceMesh> fill_rows(const FaceInput& face, const Strip& st, int depth) {
+  if (st.cap1.size() != 2 || depth > 1) return std::nullopt;
+  const auto n1 = static_cast<std::uint32_t>(st.rail1.size() - 1);
+  const auto n2 = static_cast<std::uint32_t>(st.rail2.size() - 1);
+  const std::uint32_t lo = std::min(n1, n2);
+  if (lo < 2 || n1 == n2) return std::nullopt;
+  auto R = [&](std::uint32_t k) { return st.rail1[k]; };
+  auto L = [&](std::uint32_t k) { return st.rail2[n2 - k]; };
+  std::optional<FaceMesh> best;
+  for (std::uint32_t rows = lo - 1; rows + 3 >= lo && rows >= 1; --rows) {
+    // The remainder, counter-clockwise: the chord L(rows) -> R(rows), rail1 up, cap2, rail2 down.
+    FaceInput rest;
+    std::vector<std::uint32_t> ids;
+    auto push = [&](std::uint32_t id) {
+      ids.push_back(id);
+      rest.cycle.push_back(face.cycle[id]);
+    };
+    for (std::uint32_t k = rows; k < n1; ++k) push(R(k));
+    for (std::size_t k = 0; k + 1 < st.cap2.size(); ++k) push(st.cap2[k]);
+    for (std::uint32_t k = n2; k > rows; --k) push(L(k));
+    if (rest.cycle.size() < 4 || rest.cycle.size() % 2 != 0) continue;
+    FaceSide all;
+    all.kind = FaceSide::Kind::Boundary;
+    all.edges = static_cast<std::uint32_t>(rest.cycle.size());
+    rest.sides.push_back(all);
+    const std::optional<FaceMesh> sub = fill_any(rest, depth + 1);
+    if (!sub) continue;
+    Builder m(face, FillKind::Rows);
+    for (std::uint32_t k = 0; k < rows; ++k) m.quad(L(k), R(k), R(k + 1), L(k + 1));
+    const auto nr = static_cast<std::uint32_t>(rest.cycle.size());
+    std::vector<std::uint32_t> map(ids);
+    for (const Vec2& p : sub->interior) map.push_back(m.add(p));
+    for (const auto& q : sub->quads) m.quad(map[q[0]], map[q[1]], map[q[2]], map[q[3]]);
+    (void)nr;
+    FaceMesh r = m.finish();
+    if (!r.interior.empty() && r.min_jacobian < kAcceptJacobian) relax(r, face, 30);
+    if (!best || r.min_jacobian > best->min_jacobian) best = std::move(r);
+  }
+  return best;
+}
+
+/// Every template in turn; the first good one, else the best.
+std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
+  const std::size_t n = face.cycle.size();
+  std::optional<FaceMesh> best;
+  static const bool debug = std::getenv("LAYTRACKS_DEBUG_FACE") != nullptr;
+  auto consider = [&](std::optional<FaceMesh> m) {
+    if (debug && m) std::fprintf(stderr, "  [%d] %s J=%g\n", depth, to_string(m->kind), m->min_jacobian);
+    if (m && (!best || m->min_jacobian > best->min_jacobian)) best = std::move(m);
+    return best && best->min_jacobian >= kAcceptJacobian;
+  };
+  const std::vector<Strip> strips = strips_of(face);
+  for (const Strip& st : strips)
+    if (consider(fill_grid(face, st))) return best;
+  for (const Strip& st : strips)
+    if (consider(fill_diamond(face, st))) return best;
+  if (n == 4) {
+    if (consider(fill_quad(face))) return best;
+    if (consider(fill_ring(face))) return best;
+  }
+  for (const Strip& st : strips)
+    if (consider(fill_rows(face, st, depth))) return best;
+  if (n >= 6) {
+    if (consider(fill_split(face, 0))) return best;
+    if (consider(fill_split(face, 1))) return best;
+    if (consider(fill_fan_split(face, 0))) return best;
+    consider(fill_fan_split(face, 1));
+  }
+  return best;
+}
+
 }  // namespace
 
 FaceMesh fill_face(const FaceInput& face, const std::string& where) {
@@ -317,21 +552,8 @@ FaceMesh fill_face(const FaceInput& face, const std::string& where) {
     throw InternalError("mesher: " + where + " has " + std::to_string(n) +
                         " boundary nodes; a face needs an even number, at least 4");
   }
-  std::optional<FaceMesh> best;
-  auto consider = [&](std::optional<FaceMesh> m) {
-    if (m && (!best || m->min_jacobian > best->min_jacobian)) best = std::move(m);
-    return best && best->min_jacobian >= kAcceptJacobian;
-  };
-  if (consider(fill_grid(face))) return *best;
-  if (consider(fill_diamond(face))) return *best;
-  if (n == 4) {
-    if (consider(fill_quad(face))) return *best;
-    consider(fill_ring(face));
-  } else {
-    if (consider(fill_split(face, 0))) return *best;
-    consider(fill_split(face, 1));
-  }
-  if (best && best->min_jacobian > 0.0) return *best;
+  const std::optional<FaceMesh> best = fill_any(face, 0);
+  if (best && best->min_jacobian > kMinValidJacobian) return *best;
   std::ostringstream s;
   s << "mesher: no template gives valid quads in " << where << " (" << n
     << " boundary nodes, " << face.sides.size() << " sides";
@@ -387,6 +609,86 @@ void smooth_nodes(std::vector<Vec2>& pos,
         moved = moved || old != avg;
       } else {
         pos[v] = old;
+      }
+    }
+    if (!moved) break;
+  }
+}
+
+void untangle_nodes(std::vector<Vec2>& pos,
+                    const std::vector<bool>& fixed,
+                    const std::vector<std::array<std::uint32_t, 4>>& quads,
+                    int iterations) {
+  const std::size_t n = pos.size();
+  std::vector<std::vector<std::uint32_t>> around(n);
+  for (std::uint32_t q = 0; q < quads.size(); ++q)
+    for (std::uint32_t v : quads[q]) around[v].push_back(q);
+  // Scaled Jacobians do not see size: a node may not come closer to a neighbour than
+  // kMinEdgeFraction x the mean length of its edges before the search, or quads would shrink
+  // to points.
+  std::vector<double> floor_len(n, 0.0);
+  for (std::uint32_t v = 0; v < n; ++v) {
+    double sum = 0.0;
+    int count = 0;
+    for (std::uint32_t q : around[v])
+      for (std::size_t k = 0; k < 4; ++k)
+        if (quads[q][k] == v) {
+          sum += distance(pos[v], pos[quads[q][(k + 1) % 4]]);
+          ++count;
+        }
+    floor_len[v] = count ? kMinEdgeFraction * sum / count : 0.0;
+  }
+  auto worst_at = [&](std::uint32_t v) {
+    double w = std::numeric_limits<double>::infinity();
+    for (std::uint32_t q : around[v]) {
+      const auto& x = quads[q];
+      for (std::size_t k = 0; k < 4; ++k)
+        if (x[k] == v && (distance(pos[v], pos[x[(k + 1) % 4]]) < floor_len[v] ||
+                          distance(pos[v], pos[x[(k + 3) % 4]]) < floor_len[v]))
+          return -std::numeric_limits<double>::infinity();
+      w = std::min(w, min_scaled_jacobian(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]));
+    }
+    return w;
+  };
+  static const Vec2 kDirs[8] = {{1, 0}, {0.7071, 0.7071}, {0, 1}, {-0.7071, 0.7071},
+                                {-1, 0}, {-0.7071, -0.7071}, {0, -1}, {0.7071, -0.7071}};
+  for (int it = 0; it < iterations; ++it) {
+    bool moved = false;
+    for (std::uint32_t v = 0; v < n; ++v) {
+      if (fixed[v] || around[v].empty()) continue;
+      double current = worst_at(v);
+      if (current >= kAcceptJacobian) continue;
+      // Step: a quarter of the shortest edge at v.
+      double step = std::numeric_limits<double>::infinity();
+      for (std::uint32_t q : around[v])
+        for (std::size_t k = 0; k < 4; ++k)
+          if (quads[q][k] == v) {
+            step = std::min(step, distance(pos[v], pos[quads[q][(k + 1) % 4]]));
+            step = std::min(step, distance(pos[v], pos[quads[q][(k + 3) % 4]]));
+          }
+      step *= 0.25;
+      for (int shrink = 0; shrink < 6 && step > 0.0; ++shrink, step *= 0.5) {
+        bool better = true;
+        for (int walk = 0; better && walk < 16; ++walk) {
+          better = false;
+          const Vec2 here = pos[v];
+          Vec2 best_pos = here;
+          double best = current;
+          for (const Vec2& d : kDirs) {
+            pos[v] = here + step * d;
+            const double w = worst_at(v);
+            if (w > best + 1e-12) {
+              best = w;
+              best_pos = pos[v];
+            }
+          }
+          pos[v] = best_pos;
+          if (best > current + 1e-9) {
+            current = best;
+            better = true;
+            moved = true;
+          }
+        }
       }
     }
     if (!moved) break;

@@ -35,6 +35,7 @@ enum class FillKind : std::uint8_t {
   Quad,     ///< four nodes: the face itself
   Ring,     ///< four nodes with a flat corner: an inner quad and four around it
   Split,    ///< any other face: a coarse triangulation, each triangle split into three quads
+  Rows,     ///< rows from a one-edge cap, the rest by another template
 };
 const char* to_string(FillKind kind);
 
@@ -67,5 +68,19 @@ void smooth_nodes(std::vector<Vec2>& pos,
                   int iterations);
 
 constexpr double kSmoothFloor = 0.2;
+
+/// Moves each interior node whose worst quad is below kAcceptJacobian by a compass search that
+/// raises the smallest scaled Jacobian of the quads around it (it untangles inverted quads).
+void untangle_nodes(std::vector<Vec2>& pos,
+                    const std::vector<bool>& fixed,
+                    const std::vector<std::array<std::uint32_t, 4>>& quads,
+                    int iterations);
+
+/// The untangler keeps every edge at a node at least this x their mean length before it.
+constexpr double kMinEdgeFraction = 0.2;
+
+/// A face's quads are accepted only when their smallest scaled Jacobian is above this (so
+/// that the 3D check, which sees the nodes after the frame round trip, agrees).
+constexpr double kMinValidJacobian = 1e-3;
 
 }  // namespace laytracks::mesher_detail

@@ -218,3 +218,45 @@ TEST_CASE("help describes the commands and exits 0", "[cli]") {
   CHECK(medial_help.status == 0);
   CHECK_THAT(medial_help.out, Catch::Contains("--chord-tol"));
 }
+
+TEST_CASE("mesh writes a valid all-quad mesh in every format, byte-identical run to run",
+          "[cli][mesh]") {
+  const fs::path d = fresh_dir("mesh");
+  const std::string part = q(samples_dir() + "/tray_ribs.json");
+  for (const char* ext : {".msh", ".vtu", ".bdf", ".inp", ".obj", ".off"}) {
+    CAPTURE(ext);
+    const Run r = run("mesh " + part + " -o " + q(d / (std::string("a") + ext)) + " --quiet");
+    REQUIRE(r.status == 0);
+    CHECK(r.out.empty());
+    REQUIRE(fs::exists(d / (std::string("a") + ext)));
+  }
+  const Run again = run("mesh " + part + " -o " + q(d / "b.msh") + " --report " +
+                        q(d / "report.json"));
+  REQUIRE(again.status == 0);
+  CHECK_THAT(again.out, Catch::Contains("quads") && Catch::Contains("min scaled Jacobian"));
+  CHECK_THAT(again.err, Catch::Contains("quads   ..."));  // progress per stage
+  CHECK(slurp(d / "a.msh") == slurp(d / "b.msh"));
+  const std::string report = slurp(d / "report.json");
+  CHECK_THAT(report, Catch::Contains("\"quality_before_smoothing\"") &&
+                         Catch::Contains("\"seconds\"") && Catch::Contains("\"triangles\": 0"));
+  // The independent check: our own reader and checker on the written file.
+  const Run rated = run("quality " + part + " " + q(d / "a.msh"));
+  CHECK(rated.status == 0);
+  CHECK_THAT(rated.out, Catch::Contains("valid by quality.md: yes"));
+}
+
+TEST_CASE("mesh refuses what it cannot mesh, writes nothing, and says where", "[cli][mesh]") {
+  const fs::path d = fresh_dir("mesh-refused");
+  std::ofstream(d / "old.msh") << "previous content";
+  // A malformed part: status 1.
+  const Run bad = run("mesh " + q(test_data_dir() + "/invalid/" + "loop_too_short.json") + " -o " +
+                      q(d / "old.msh"));
+  CHECK(bad.status == 1);
+  CHECK(slurp(d / "old.msh") == "previous content");
+  // An unknown extension: status 2, before any work.
+  const Run ext = run("mesh " + q(samples_dir() + "/bracket.json") + " -o " + q(d / "x.stl"));
+  CHECK(ext.status == 2);
+  CHECK_THAT(ext.err, Catch::Contains(".msh"));
+  CHECK_FALSE(fs::exists(d / "x.stl"));
+  CHECK(std::distance(fs::directory_iterator(d), fs::directory_iterator()) == 1);
+}

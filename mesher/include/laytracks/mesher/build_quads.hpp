@@ -22,8 +22,8 @@ struct QuadOptions {
 /// What the quad stage did, for reports and tests.
 struct QuadStats {
   std::size_t faces = 0;  ///< faces of the patches cut by their rails
-  /// Faces per template: grid, diamond, quad, ring, split (mesher_detail::FillKind order).
-  std::array<std::size_t, 5> by_template{};
+  /// Faces per template: grid, diamond, quad, ring, split, rows (mesher_detail::FillKind order).
+  std::array<std::size_t, 6> by_template{};
   std::size_t dangling_rails = 0;  ///< rail segments left out: their MA end met no other rail
   std::size_t parity_boundary = 0;  ///< boundary pieces given one more edge for parity
   std::size_t parity_rails = 0;     ///< rail segments given one more edge for parity
