@@ -12,6 +12,7 @@
 #include "laytracks/io/atomic_file.hpp"
 #include "laytracks/io/brep_json.hpp"
 #include "laytracks/medial/part_medial.hpp"
+#include "laytracks/mesher/mesh_part.hpp"
 
 namespace laytracks::cli {
 
@@ -26,8 +27,8 @@ const char* const kCheckLoopsHelp =
     "close, within 1e-9 x the part's size. Exit status 3 when a rail ends where the geometry\n"
     "does not allow it, a loop does not close, or the cut graph fails its validator.\n"
     "\n"
-    "  --size W        track width (default: the part's mesh.size, else 1/40 of its bounding-box\n"
-    "                  diagonal)\n"
+    "  --size W        track width (default: the part's mesh.size, else 1/40 of the part's size,\n"
+    "                  twice the largest distance of a vertex from their centroid)\n"
     "  --json OUT.json "
     "{\"rails\":[{\"id\",\"start\",\"end\",\"closure_gap\",\"patches\"}],\"loops\",\n"
     "                  \"max_closure_gap\",\"ok\",...}\n"
@@ -47,7 +48,7 @@ int run_check_loops(const std::vector<std::string>& argv) {
   const std::vector<MedialAxis> axes = compute_medial_axes(part);
   CutGraphOptions options;
   options.track_width =
-      args.positive_number("--size").value_or(part.mesh.size.value_or(part.bbox.diagonal() / 40.0));
+      args.positive_number("--size").value_or(part.mesh.size.value_or(default_element_size(part)));
   const CutGraph graph = build_cut_graph(part, axes, options);
   const std::vector<std::string> problems = validate_cut_graph(part, axes, graph);
   const double seconds =

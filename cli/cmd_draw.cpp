@@ -10,6 +10,7 @@
 #include "laytracks/io/cutgraph_output.hpp"
 #include "laytracks/io/medial_output.hpp"
 #include "laytracks/medial/part_medial.hpp"
+#include "laytracks/mesher/mesh_part.hpp"
 
 namespace laytracks::cli {
 
@@ -23,8 +24,8 @@ const char* const kDrawHelp =
     "  corridors  the source rails (red) and the corridors between them, shaded\n"
     "  tracks     the track rails (blue) laid at width W and the tracks, shaded\n"
     "\n"
-    "  --size W       track width (default: the part's mesh.size, else 1/40 of its bounding-box\n"
-    "                 diagonal)\n"
+    "  --size W       track width (default: the part's mesh.size, else 1/40 of the part's size,\n"
+    "                 twice the largest distance of a vertex from their centroid)\n"
     "  --view V       unfolded or oblique\n"
     "  --chord-tol T  sagitta bound for arcs\n";
 
@@ -48,7 +49,7 @@ int run_draw(const std::vector<std::string>& argv) {
   CutGraphOptions options;
   if (stage == "tracks") {
     options.track_width = args.positive_number("--size").value_or(
-        part.mesh.size.value_or(part.bbox.diagonal() / 40.0));
+        part.mesh.size.value_or(default_element_size(part)));
   }
   const std::string view =
       args.value("--view").value_or(part.patches.size() > 1 ? "oblique" : "unfolded");
