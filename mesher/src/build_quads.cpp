@@ -561,7 +561,6 @@ class QuadBuilder {
       const FaceMesh fm = fill_face(in, where.str());
       ++result_.stats.faces;
       ++result_.stats.by_template[static_cast<std::size_t>(fm.kind)];
-      const auto n = static_cast<std::uint32_t>(in.cycle.size());
       std::vector<std::uint32_t>& ids = mesh_ids;
       for (const Vec2& p : fm.interior) ids.push_back(add_node(patch.frame.to_3d(p)));
       for (const auto& q : fm.quads) {
@@ -571,7 +570,6 @@ class QuadBuilder {
         el.shell = static_cast<std::uint32_t>(patch.shell);
         result_.mesh.elements.push_back(el);
       }
-      (void)n;
     }
   }
 

@@ -502,11 +502,9 @@ std::optional<FaceMesh> fill_rows(const FaceInput& face, const Strip& st, int de
     if (!sub) continue;
     Builder m(face, FillKind::Rows);
     for (std::uint32_t k = 0; k < rows; ++k) m.quad(L(k), R(k), R(k + 1), L(k + 1));
-    const auto nr = static_cast<std::uint32_t>(rest.cycle.size());
     std::vector<std::uint32_t> map(ids);
     for (const Vec2& p : sub->interior) map.push_back(m.add(p));
     for (const auto& q : sub->quads) m.quad(map[q[0]], map[q[1]], map[q[2]], map[q[3]]);
-    (void)nr;
     FaceMesh r = m.finish();
     if (!r.interior.empty() && r.min_jacobian < kAcceptJacobian) relax(r, face, 30);
     if (!best || r.min_jacobian > best->min_jacobian) best = std::move(r);
