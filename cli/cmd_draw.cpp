@@ -1,60 +1,82 @@
-// laytracks draw PART.json --stage medial|corridors|tracks -o OUT.svg [--size W] [--chord-tol T]
+// laytracks draw PART.json --stage medial|corridors|tracks|mesh -o OUT.svg [--size W]
+//                [--smooth N] [--view unfolded|oblique] [--chord-tol T]
 #include <iostream>
 
 #include "args.hpp"
 #include "commands.hpp"
-#include "laytracks/brep/build.hpp"
 #include "laytracks/cutgraph/cut_graph.hpp"
 #include "laytracks/io/atomic_file.hpp"
-#include "laytracks/io/brep_json.hpp"
 #include "laytracks/io/cutgraph_output.hpp"
 #include "laytracks/io/medial_output.hpp"
+#include "laytracks/io/mesh_svg.hpp"
 #include "laytracks/medial/part_medial.hpp"
 #include "laytracks/mesher/mesh_part.hpp"
+#include "meshing.hpp"
 
 namespace laytracks::cli {
 
 const char* const kDrawHelp =
-    "usage: laytracks draw PART.json --stage medial|corridors|tracks -o OUT.svg [--size W]\n"
-    "                      [--view unfolded|oblique] [--chord-tol T]\n"
+    "usage: laytracks draw PART.json --stage medial|corridors|tracks|mesh -o OUT.svg [--size W]\n"
+    "                      [--smooth N] [--view unfolded|oblique] [--chord-tol T]\n"
     "\n"
-    "Draws a stage as SVG: one panel per patch in its own plane (unfolded), or, for corridors\n"
-    "and tracks, the whole part in an oblique view (the default for parts of several patches):\n"
+    "Draws a stage as SVG: one panel per patch in its own plane (unfolded), or, for corridors,\n"
+    "tracks and mesh, the whole part in an oblique view (the default for parts of several\n"
+    "patches):\n"
     "  medial     the boundary and the medial axis coloured by radius, branch points in red\n"
     "  corridors  the source rails (red) and the corridors between them, shaded\n"
     "  tracks     the track rails (blue) laid at width W and the tracks, shaded\n"
+    "  mesh       the quads of `laytracks mesh` (checked by quality.md first), outlined and\n"
+    "             filled by their scaled Jacobian (colour bar below: dark blue 0, yellow 1,\n"
+    "             the 'bad' threshold 0.2 and the smallest value marked), patch boundaries bold.\n"
+    "             A part the mesher refuses gets its message and exit status 3, as with\n"
+    "             mesh, and nothing is written.\n"
     "\n"
-    "  --size W       track width (default: the part's mesh.size, else 1/40 of the part's size,\n"
-    "                 twice the largest distance of a vertex from their centroid)\n"
+    "  --size W       track width and element size (default: the part's mesh.size, else 1/40\n"
+    "                 of the part's size, twice the largest distance of a vertex from their\n"
+    "                 centroid)\n"
+    "  --smooth N     mesh: Laplacian sweeps over interior nodes (default 10)\n"
     "  --view V       unfolded or oblique\n"
     "  --chord-tol T  sagitta bound for arcs\n";
 
 int run_draw(const std::vector<std::string>& argv) {
-  const Args args(argv, {"--stage", "-o", "--size", "--chord-tol", "--view"}, {});
+  const Args args(argv, {"--stage", "-o", "--size", "--smooth", "--chord-tol", "--view"}, {});
   if (args.positional().size() != 1) throw UsageError("draw needs exactly one PART.json");
   const auto out = args.value("-o");
   if (!out) throw UsageError("draw needs -o OUT.svg");
   const std::string stage = args.value("--stage").value_or("");
-  if (stage != "medial" && stage != "corridors" && stage != "tracks") {
-    throw UsageError("draw needs --stage medial, corridors or tracks");
+  if (stage != "medial" && stage != "corridors" && stage != "tracks" && stage != "mesh") {
+    throw UsageError("draw needs --stage medial, corridors, tracks or mesh");
   }
-  BuildOptions build_options;
-  build_options.chord_tol = args.positive_number("--chord-tol");
-  const Part part = build_part(read_brep_json(args.positional()[0]), build_options);
+  if (stage != "mesh" && args.value("--smooth")) {
+    throw UsageError("--smooth is for --stage mesh only");
+  }
+  const std::optional<std::string> view_arg = args.value("--view");
+  if (view_arg && *view_arg != "oblique" && *view_arg != "unfolded") {
+    throw UsageError("--view is unfolded or oblique");
+  }
+  const MeshingOptions options = meshing_options(args);
+  const Part part = read_part(args.positional()[0], options.build);
+  const std::string view = view_arg.value_or(part.patches.size() > 1 ? "oblique" : "unfolded");
+  if (stage == "mesh") {
+    const MeshPartResult r = mesh_part(part, options.mesh);
+    const std::vector<double> jac = element_scaled_jacobians(part, r.mesh);
+    write_file_atomically(*out, [&](std::ostream& o) {
+      write_mesh_svg(o, part, r.mesh, jac,
+                     view == "oblique" ? MeshView::kOblique : MeshView::kUnfolded);
+    });
+    return kOk;
+  }
   const std::vector<MedialAxis> axes = compute_medial_axes(part);
   if (stage == "medial") {
     write_file_atomically(*out, [&](std::ostream& o) { write_medial_svg(o, part, axes); });
     return kOk;
   }
-  CutGraphOptions options;
+  CutGraphOptions cg;
   if (stage == "tracks") {
-    options.track_width = args.positive_number("--size").value_or(
-        part.mesh.size.value_or(default_element_size(part)));
+    cg.track_width =
+        options.mesh.size.value_or(part.mesh.size.value_or(default_element_size(part)));
   }
-  const std::string view =
-      args.value("--view").value_or(part.patches.size() > 1 ? "oblique" : "unfolded");
-  if (view != "oblique" && view != "unfolded") throw UsageError("--view is unfolded or oblique");
-  const CutGraph graph = build_cut_graph(part, axes, options);
+  const CutGraph graph = build_cut_graph(part, axes, cg);
   write_file_atomically(*out, [&](std::ostream& o) {
     if (view == "oblique") {
       write_rails_oblique_svg(o, part, axes, graph, stage);

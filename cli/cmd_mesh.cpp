@@ -11,12 +11,10 @@
 
 #include "args.hpp"
 #include "commands.hpp"
-#include "laytracks/brep/build.hpp"
 #include "laytracks/io/atomic_file.hpp"
-#include "laytracks/io/brep_json.hpp"
 #include "laytracks/io/mesh_output.hpp"
 #include "laytracks/mesher/mesh_part.hpp"
-#include "laytracks/mesher/quality.hpp"
+#include "meshing.hpp"
 
 namespace laytracks::cli {
 
@@ -70,19 +68,15 @@ int run_mesh(const std::vector<std::string>& argv) {
   check_mesh_extension(*out);
   const bool quiet = args.flag("--quiet");
   const auto t0 = std::chrono::steady_clock::now();
-  BuildOptions build_options;
-  build_options.chord_tol = args.positive_number("--chord-tol");
+  const MeshingOptions options = meshing_options(args);
   const std::string input = args.positional()[0];
-  const Part part = build_part(read_brep_json(input), build_options);
-  MeshPartOptions options;
-  options.size = args.positive_number("--size");
-  if (const auto n = args.count("--smooth")) options.smooth = static_cast<int>(*n);
+  const Part part = read_part(input, options.build);
   const auto on_stage = [&](const char* stage) {
     if (!quiet) std::fprintf(stderr, "  %-7s ...\n", stage);
   };
   MeshPartResult r;
   try {
-    r = mesh_part(part, options, on_stage);
+    r = mesh_part(part, options.mesh, on_stage);
   } catch (const InvalidMeshError& e) {
     if (const auto dir = args.value("--debug-dump")) {
       std::filesystem::create_directories(*dir);
@@ -95,23 +89,14 @@ int run_mesh(const std::vector<std::string>& argv) {
     std::cerr << e.check().report();
     throw;
   }
-  std::vector<double> jac;
-  jac.reserve(r.mesh.elements.size());
-  for (const MeshElement& el : r.mesh.elements) {
-    const Vec3 n = part.patches[el.patch.index()].frame.n;
-    jac.push_back(measure_quad({r.mesh.nodes[el.nodes[0]], r.mesh.nodes[el.nodes[1]],
-                                r.mesh.nodes[el.nodes[2]], r.mesh.nodes[el.nodes[3]]},
-                               n)
-                      .scaled_jacobian);
-  }
-  write_mesh(*out, part, r.mesh, &jac);
+  write_part_mesh(*out, part, r.mesh);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (const auto report = args.value("--report")) {
     nlohmann::ordered_json doc;
     doc["part"] = input;
     doc["size"] = r.size;
-    doc["smooth"] = options.smooth;
+    doc["smooth"] = options.mesh.smooth;
     doc["quads"] = r.mesh.elements.size();
     doc["nodes"] = r.mesh.nodes.size();
     doc["valid"] = r.check.valid();

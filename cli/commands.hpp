@@ -23,6 +23,8 @@ extern const char* const kMeshHelp;
 void check_mesh_extension(const std::string& path);
 int run_medial(const std::vector<std::string>& args);
 extern const char* const kMedialHelp;
+int run_batch(const std::vector<std::string>& args);
+extern const char* const kBatchHelp;
 int run_check_loops(const std::vector<std::string>& args);
 int run_draw(const std::vector<std::string>& args);
 int run_quality(const std::vector<std::string>& args);

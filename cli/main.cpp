@@ -15,9 +15,11 @@ const char* const kHelp =
     "\n"
     "commands:\n"
     "  mesh PART.json -o OUT  mesh the part with quads, check it, write .msh .vtu .bdf .inp ...\n"
+    "  batch INPUTS -o DIR    mesh many parts (files, folders, list files) in parallel, with a\n"
+    "                         table of the results and DIR/batch-report.json\n"
     "  medial PART.json       the medial axis of every patch, as JSON and as a picture\n"
     "  check-loops PART.json  lay the rails and report how every rail chain ends\n"
-    "  draw PART.json         picture of a stage: medial, corridors or tracks\n"
+    "  draw PART.json         picture of a stage: medial, corridors, tracks or mesh\n"
     "  quality PART MESH.msh  rate any MSH 4.1 mesh of the part by quality.md\n"
     "  help [COMMAND]         this text, or a command's own\n"
     "\n"
@@ -25,13 +27,17 @@ const char* const kHelp =
     "exit status: 0 done; 1 the part was refused or could not be read (the message says what\n"
     "and where); 2 wrong command line; 3 internal error (a stage failed its own check: please\n"
     "report it with the part); 4 an output file could not be written; 5 (quality) the mesh is\n"
-    "not valid. On any error nothing is written, and an existing output file is left as it was.\n";
+    "not valid. On any error nothing is written, and an existing output file is left as it was.\n"
+    "batch meshes every part it can; its status says what became of the others (laytracks help\n"
+    "batch).\n";
 
 int dispatch(const std::vector<std::string>& args) {
   using namespace laytracks::cli;
   if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
     if (args.size() > 1 && args[1] == "mesh") {
       std::cout << kMeshHelp;
+    } else if (args.size() > 1 && args[1] == "batch") {
+      std::cout << kBatchHelp;
     } else if (args.size() > 1 && args[1] == "medial") {
       std::cout << kMedialHelp;
     } else if (args.size() > 1 && args[1] == "check-loops") {
@@ -54,6 +60,7 @@ int dispatch(const std::vector<std::string>& args) {
     if (a == "--help" || a == "-h") return dispatch({"help", args[0]});
   }
   if (args[0] == "mesh") return run_mesh(rest);
+  if (args[0] == "batch") return run_batch(rest);
   if (args[0] == "medial") return run_medial(rest);
   if (args[0] == "check-loops") return run_check_loops(rest);
   if (args[0] == "draw") return run_draw(rest);

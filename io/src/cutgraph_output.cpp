@@ -97,25 +97,12 @@ void write_rails_svg(std::ostream& out,
   out << svg.str();
 }
 
-namespace {
-
-/// An oblique camera: the viewer is towards +x, -y, +z; screen y points up.
-struct Camera {
-  Vec3 right = normalized(Vec3{1.0, 1.0, 0.0});
-  Vec3 toward = normalized(Vec3{1.0, -1.0, 0.9});  // from the part towards the viewer
-  Vec3 up = normalized(cross(toward, right));
-  Vec2 screen(Vec3 p) const { return {dot(p, right), dot(p, up)}; }
-  double depth(Vec3 p) const { return dot(p, toward); }
-};
-
-}  // namespace
-
 void write_rails_oblique_svg(std::ostream& out,
                              const Part& part,
                              const std::vector<MedialAxis>& axes,
                              const CutGraph& graph,
                              const std::string& title) {
-  const Camera cam;
+  const ObliqueCamera cam;
   Box2 box;
   for (const BrepVertex& v : part.vertices) box.add(cam.screen(v.position));
   const double size = 900.0;

@@ -16,6 +16,7 @@
 #include <OpenMesh/Core/System/omstream.hh>
 #include <array>
 #include <cstdint>
+#include <mutex>
 #include <vector>
 
 #include "laytracks/brep/error.hpp"
@@ -28,18 +29,36 @@ namespace {
 using OmMesh = OpenMesh::PolyMesh_ArrayKernelT<OpenMesh::DefaultTraitsDouble>;
 
 /// Silences OpenMesh's error stream while faces are added (a refused face is expected and
-/// handled), restoring its state afterwards.
+/// handled), restoring its state afterwards. omerr() is one stream for the whole process and
+/// its on/off flag is a plain bool, so concurrent writers (laytracks batch) share one silence:
+/// the first to come turns the stream off, the last to leave restores it, under a lock, and
+/// no writer flips the flag while another is adding faces.
 class QuietOpenMesh {
  public:
-  QuietOpenMesh() : was_enabled_(omerr().is_enabled()) { omerr().disable(); }
+  QuietOpenMesh() {
+    const std::lock_guard<std::mutex> lock(state().mutex);
+    if (state().users++ == 0) {
+      state().was_enabled = omerr().is_enabled();
+      omerr().disable();
+    }
+  }
   ~QuietOpenMesh() {
-    if (was_enabled_) omerr().enable();
+    const std::lock_guard<std::mutex> lock(state().mutex);
+    if (--state().users == 0 && state().was_enabled) omerr().enable();
   }
   QuietOpenMesh(const QuietOpenMesh&) = delete;
   QuietOpenMesh& operator=(const QuietOpenMesh&) = delete;
 
  private:
-  bool was_enabled_;
+  struct State {
+    std::mutex mutex;
+    std::size_t users = 0;
+    bool was_enabled = false;
+  };
+  static State& state() {
+    static State s;
+    return s;
+  }
 };
 
 }  // namespace

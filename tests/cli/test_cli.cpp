@@ -1,7 +1,5 @@
 // The laytracks executable, run as a user runs it: exit statuses, messages, files written or
 // not, and byte-identical output from run to run.
-#include <sys/wait.h>
-
 #include <array>
 #include <catch2/catch.hpp>
 #include <cstdio>
@@ -10,53 +8,17 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "run_cli.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
+using laytracks::test::fresh_dir;
+using laytracks::test::q;
+using laytracks::test::Run;
+using laytracks::test::run;
 using laytracks::test::samples_dir;
+using laytracks::test::slurp;
 using laytracks::test::test_data_dir;
-
-namespace {
-
-struct Run {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-/// Runs `laytracks ARGS` through the shell, capturing stdout, stderr and the exit status.
-Run run(const std::string& args) {
-  const fs::path dir = fs::temp_directory_path() / "laytracks-cli-test";
-  fs::create_directories(dir);
-  const fs::path out = dir / "stdout.txt";
-  const fs::path err = dir / "stderr.txt";
-  const std::string cmd = std::string("'") + LAYTRACKS_EXE + "' " + args + " >'" + out.string() +
-                          "' 2>'" + err.string() + "'";
-  const int raw = std::system(cmd.c_str());
-  Run r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("laytracks-cli-" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
-
-}  // namespace
 
 TEST_CASE("medial writes JSON and SVG for a sample part", "[cli]") {
   const fs::path d = fresh_dir("medial");

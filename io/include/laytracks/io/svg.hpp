@@ -23,6 +23,18 @@ class Panel {
   double y_ = 0.0;
 };
 
+/// An oblique camera for pictures of a whole part: the viewer is towards +x, -y, +z (front
+/// right, above); screen y points up.
+struct ObliqueCamera {
+  Vec3 right = normalized(Vec3{1.0, 1.0, 0.0});
+  Vec3 toward = normalized(Vec3{1.0, -1.0, 0.9});  ///< from the part towards the viewer
+  Vec3 up = normalized(cross(toward, right));
+  /// Screen coordinates of a point (a Panel maps them into the picture).
+  Vec2 screen(Vec3 p) const { return {dot(p, right), dot(p, up)}; }
+  /// Larger is nearer the viewer: draw far to near.
+  double depth(Vec3 p) const { return dot(p, toward); }
+};
+
 class SvgDocument {
  public:
   SvgDocument(double width, double height);

@@ -1,0 +1,209 @@
+#include "laytracks/io/mesh_svg.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include "laytracks/brep/error.hpp"
+#include "laytracks/io/svg.hpp"
+#include "laytracks/mesher/quality.hpp"
+
+namespace laytracks {
+namespace {
+
+constexpr double kLegendHeight = 66.0;
+
+/// Throws unless element e's patch and nodes exist.
+void check_element(const Part& part, const QuadMesh& mesh, std::size_t e) {
+  const MeshElement& el = mesh.elements[e];
+  if (el.patch.index() >= part.patches.size()) {
+    throw Error("cannot draw the mesh: element " + std::to_string(e) + " has no patch " +
+                std::to_string(el.patch.index()));
+  }
+  for (std::size_t k = 0; k < (el.is_quad() ? 4u : 3u); ++k) {
+    if (el.nodes[k] >= mesh.nodes.size()) {
+      throw Error("cannot draw the mesh: element " + std::to_string(e) + " refers to node " +
+                  std::to_string(el.nodes[k]) + " of " + std::to_string(mesh.nodes.size()));
+    }
+  }
+}
+
+/// Corners of element e: 4 for a quad, 3 for a triangle.
+std::vector<Vec3> corners(const QuadMesh& mesh, std::size_t e) {
+  const MeshElement& el = mesh.elements[e];
+  std::vector<Vec3> pts;
+  for (std::size_t k = 0; k < (el.is_quad() ? 4u : 3u); ++k) pts.push_back(mesh.nodes[el.nodes[k]]);
+  return pts;
+}
+
+std::string fill_of(double jacobian) {
+  return ramp_colour(std::isfinite(jacobian) ? std::clamp(jacobian, 0.0, 1.0) : 0.0);
+}
+
+/// Outline width in pixels for the elements of a patch: thin enough that small elements still
+/// show their colour (about 6% of a typical element's side), never invisible.
+double outline_width(const Patch& patch, std::size_t elements, double scale) {
+  if (elements == 0) return 0.4;
+  const double side_px = scale * std::sqrt(patch.area / static_cast<double>(elements));
+  return std::clamp(0.06 * side_px, 0.1, 0.6);
+}
+
+/// A loop drawn as an open polyline that returns to its start (not a <polygon>: the picture's
+/// only polygons are elements).
+std::vector<Vec2> closed_run(std::vector<Vec2> pts) {
+  if (!pts.empty()) pts.push_back(pts.front());
+  return pts;
+}
+
+std::string format(const char* fmt, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, v);
+  return buf;
+}
+
+/// The colour bar and the counts, starting at picture height y.
+void legend(SvgDocument& svg,
+            double y,
+            const QuadMesh& mesh,
+            const std::vector<double>& jacobian,
+            const std::string& view) {
+  const double x0 = 10.0;
+  const double w = 240.0;
+  for (int i = 0; i < 120; ++i) {
+    svg.rect({x0 + 2.0 * i, y}, {x0 + 2.0 * (i + 1), y + 14.0}, ramp_colour(i / 119.0), "none");
+  }
+  svg.rect({x0, y}, {x0 + w, y + 14.0}, "none", "#222");
+  const double bad = QualityThresholds::kScaledJacobian;
+  svg.polyline({{x0 + w * bad, y - 3.0}, {x0 + w * bad, y + 17.0}}, "#d62728", 1.5);
+  double lowest = std::numeric_limits<double>::infinity();
+  for (double j : jacobian) lowest = std::min(lowest, std::isfinite(j) ? j : 0.0);
+  if (!jacobian.empty()) {
+    const double at = x0 + w * std::clamp(lowest, 0.0, 1.0);
+    svg.polyline({{at - 4.0, y + 22.0}, {at, y + 15.0}, {at + 4.0, y + 22.0}}, "#222", 1.2);
+  }
+  svg.text({x0, y + 32.0}, "0", 10.0, "middle");
+  svg.text({x0 + w * bad, y + 32.0}, format("%g", bad), 10.0, "middle");
+  svg.text({x0 + w * 0.5, y + 32.0}, "0.5", 10.0, "middle");
+  svg.text({x0 + w, y + 32.0}, "1", 10.0, "middle");
+  std::size_t quads = 0;
+  for (const MeshElement& el : mesh.elements) quads += el.is_quad() ? 1u : 0u;
+  std::string label = "scaled Jacobian (bad <= " + format("%g", bad) + ", red)";
+  if (!jacobian.empty()) label += ": smallest " + format("%.3f", lowest) + " (marked)";
+  svg.text({x0 + w + 14.0, y + 11.0}, label, 12.0);
+  const std::size_t triangles = mesh.elements.size() - quads;
+  svg.text({x0, y + 50.0},
+           "mesh, " + view + " view: " + std::to_string(quads) + " quads, " +
+               (triangles ? std::to_string(triangles) + " triangles, " : std::string()) +
+               std::to_string(mesh.nodes.size()) + " nodes; patch boundaries bold",
+           12.0);
+}
+
+void write_unfolded(std::ostream& out,
+                    const Part& part,
+                    const QuadMesh& mesh,
+                    const std::vector<double>& jacobian) {
+  const std::size_t n = part.patches.size();
+  const std::size_t cols = std::max<std::size_t>(
+      1, std::min<std::size_t>(n, static_cast<std::size_t>(std::ceil(std::sqrt(double(n))))));
+  const std::size_t rows = (n + cols - 1) / cols;
+  const double cell = n == 1 ? 640.0 : 360.0;
+  const double head = 24.0;
+  SvgDocument svg(cell * static_cast<double>(cols),
+                  (head + cell) * static_cast<double>(rows) + kLegendHeight);
+  std::vector<Panel> panels;
+  std::vector<std::size_t> count(n, 0);
+  for (const MeshElement& el : mesh.elements) ++count[el.patch.index()];
+  std::vector<double> outline(n, 0.4);
+  for (std::size_t p = 0; p < n; ++p) {
+    Box2 box;
+    for (const auto& loop : part.patches[p].polygon.loops) {
+      for (Vec2 q : loop) box.add(q);
+    }
+    const double x0 = cell * static_cast<double>(p % cols);
+    const double y0 = (cell + head) * static_cast<double>(p / cols);
+    panels.emplace_back(box, x0, y0 + head, cell, cell, 16.0);
+    svg.text({x0 + 8, y0 + 18},
+             part.patches[p].name + "  (" + std::to_string(count[p]) + " elements)", 14.0);
+    outline[p] = outline_width(part.patches[p], count[p], panels[p].scale());
+  }
+  for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
+    const std::size_t p = mesh.elements[e].patch.index();
+    std::vector<Vec2> pts;
+    for (const Vec3& x : corners(mesh, e)) {
+      pts.push_back(panels[p].map(part.patches[p].frame.to_2d(x)));
+    }
+    svg.polyline(pts, "#333", outline[p], true, fill_of(jacobian[e]));
+  }
+  for (std::size_t p = 0; p < n; ++p) {
+    for (const auto& loop : part.patches[p].polygon.loops) {
+      std::vector<Vec2> pts;
+      for (Vec2 q : loop) pts.push_back(panels[p].map(q));
+      svg.polyline(closed_run(std::move(pts)), "#000", 1.8);
+    }
+  }
+  legend(svg, (head + cell) * static_cast<double>(rows) + 8.0, mesh, jacobian, "unfolded");
+  out << svg.str();
+}
+
+void write_oblique(std::ostream& out,
+                   const Part& part,
+                   const QuadMesh& mesh,
+                   const std::vector<double>& jacobian) {
+  const ObliqueCamera cam;
+  Box2 box;
+  for (const BrepVertex& v : part.vertices) box.add(cam.screen(v.position));
+  for (const Vec3& x : mesh.nodes) box.add(cam.screen(x));
+  const double size = 900.0;
+  SvgDocument svg(size, size + kLegendHeight);
+  const Panel panel(box, 0.0, 0.0, size, size, 24.0);
+  const std::size_t n = part.patches.size();
+  std::vector<std::vector<std::size_t>> by_patch(n);
+  for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
+    const std::size_t p = mesh.elements[e].patch.index();
+    by_patch[p].push_back(e);
+  }
+  // Patches far to near (painter's order by the depth of their frame origins).
+  std::vector<std::pair<double, std::size_t>> order;
+  for (std::size_t p = 0; p < n; ++p) order.push_back({cam.depth(part.patches[p].frame.origin), p});
+  std::sort(order.begin(), order.end());
+  for (const auto& [depth, p] : order) {
+    (void)depth;
+    const Patch& patch = part.patches[p];
+    const double width = outline_width(patch, by_patch[p].size(), panel.scale());
+    for (const std::size_t e : by_patch[p]) {
+      std::vector<Vec2> pts;
+      for (const Vec3& x : corners(mesh, e)) pts.push_back(panel.map(cam.screen(x)));
+      svg.polyline(pts, "#333", width, true, fill_of(jacobian[e]));
+    }
+    for (const auto& loop : patch.polygon.loops) {
+      std::vector<Vec2> pts;
+      for (Vec2 q : loop) pts.push_back(panel.map(cam.screen(patch.frame.to_3d(q))));
+      svg.polyline(closed_run(std::move(pts)), "#000", 1.6);
+    }
+  }
+  legend(svg, size + 8.0, mesh, jacobian, "oblique");
+  out << svg.str();
+}
+
+}  // namespace
+
+void write_mesh_svg(std::ostream& out,
+                    const Part& part,
+                    const QuadMesh& mesh,
+                    const std::vector<double>& scaled_jacobian,
+                    MeshView view) {
+  if (scaled_jacobian.size() != mesh.elements.size()) {
+    throw Error("cannot draw the mesh: " + std::to_string(scaled_jacobian.size()) +
+                " scaled Jacobians for " + std::to_string(mesh.elements.size()) + " elements");
+  }
+  for (std::size_t e = 0; e < mesh.elements.size(); ++e) check_element(part, mesh, e);
+  if (view == MeshView::kOblique) {
+    write_oblique(out, part, mesh, scaled_jacobian);
+  } else {
+    write_unfolded(out, part, mesh, scaled_jacobian);
+  }
+}
+
+}  // namespace laytracks
