@@ -663,10 +663,11 @@ bool cut_down(Builder& m, const std::vector<std::uint32_t>& ids, int& budget) {
 /// diagonals that makes every triangle's degree in the dual tree odd; it exists because the
 /// tree has n - 2 nodes, an even number). A triangle with three midpoints becomes three quads
 /// round its centre; two triangles that share their one marked diagonal become one quad (the
-/// midpoint dropped; a ring of five when that quad would have a flat corner); a triangle with
-/// one midpoint whose neighbour has three becomes one quad with a flat corner at the midpoint,
-/// which the relaxation moves into the neighbour. It needs nothing of the face but a
-/// triangulation: the template of last resort.
+/// midpoint dropped; when that quad would have a flat or reflex corner, each triangle becomes a
+/// ring of five round its corners and the midpoint); a triangle with
+/// one midpoint whose neighbour has three becomes a ring of five round its four nodes (the
+/// midpoint a flat corner, which the ring's two quads there split). It needs nothing of the
+/// face but a triangulation: the template of last resort.
 std::optional<FaceMesh> fill_pairs(const FaceInput& face) {
   const auto n = static_cast<std::uint32_t>(face.cycle.size());
   if (n < 4 || n % 2 != 0) return std::nullopt;
@@ -740,14 +741,17 @@ std::optional<FaceMesh> fill_pairs(const FaceInput& face) {
       std::uint32_t w = 0;
       for (std::uint32_t u : tris[other])
         if (u != x && u != y) w = u;
-      // A flat or reflex corner (a node on a straight side) cannot be relaxed away: a ring.
+      // A flat or reflex corner (a node on a straight side, or a reflex node) cannot be
+      // relaxed away: each triangle a ring of five round its corners and the shared midpoint.
       if (min_scaled_jacobian(poly[y], poly[z], poly[x], poly[w]) < kSmoothFloor) {
-        ring_into(m, {y, z, x, w});
+        const std::uint32_t c = mid(x, y);
+        ring_into(m, {y, z, x, c});
+        ring_into(m, {x, w, y, c});
       } else {
         m.quad(y, z, x, w);
       }
     } else {
-      m.quad(y, z, x, mid(x, y));
+      ring_into(m, {y, z, x, mid(x, y)});
     }
   }
   FaceMesh r = m.finish();
@@ -811,6 +815,13 @@ std::optional<FaceMesh> fill_rows(const FaceInput& face, const Strip& st, int de
   return best;
 }
 
+/// Templates' worst corners are compared in steps of this; any valid one beats every invalid.
+constexpr double kChoiceStep = 0.05;
+double quantised(double jacobian) {
+  const double step = std::floor(jacobian / kChoiceStep);
+  return jacobian > kMinValidJacobian ? step : step - 1e6;
+}
+
 /// Every template in turn; the first good one, else the best.
 std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
   const std::size_t n = face.cycle.size();
@@ -818,7 +829,11 @@ std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
   static const bool debug = std::getenv("LAYTRACKS_DEBUG_FACE") != nullptr;
   auto consider = [&](std::optional<FaceMesh> m) {
     if (debug && m) std::fprintf(stderr, "  [%d] %s J=%g\n", depth, to_string(m->kind), m->min_jacobian);
-    if (m && (!best || m->min_jacobian > best->min_jacobian)) best = std::move(m);
+    // A later template must be better by a whole kChoiceStep: relaxation is sensitive to the
+    // last bits of the input, and a choice between two nearly equal templates would otherwise
+    // differ between poses of one part (and with it the element count).
+    if (m && (!best || quantised(m->min_jacobian) > quantised(best->min_jacobian)))
+      best = std::move(m);
     return best && best->min_jacobian >= kAcceptJacobian;
   };
   const std::vector<Strip> strips = strips_of(face);
@@ -968,6 +983,12 @@ void untangle_nodes(std::vector<Vec2>& pos,
             step = std::min(step, distance(pos[v], pos[quads[q][(k + 3) % 4]]));
           }
       step *= 0.25;
+      Vec2 ref{1.0, 0.0};
+      for (std::size_t k = 0; k < 4; ++k)
+        if (quads[around[v].front()][k] == v) {
+          const Vec2 e = pos[quads[around[v].front()][(k + 1) % 4]] - pos[v];
+          if (norm(e) > 0.0) ref = (1.0 / norm(e)) * e;
+        }
       for (int shrink = 0; shrink < 6 && step > 0.0; ++shrink, step *= 0.5) {
         bool better = true;
         for (int walk = 0; better && walk < 16; ++walk) {
@@ -975,7 +996,10 @@ void untangle_nodes(std::vector<Vec2>& pos,
           const Vec2 here = pos[v];
           Vec2 best_pos = here;
           double best = current;
-          for (const Vec2& d : kDirs) {
+          for (const Vec2& k : kDirs) {
+            // Directions turn with the node's first edge, not with the frame: every pose of a
+            // part relaxes the same way.
+            const Vec2 d{k.x * ref.x - k.y * ref.y, k.x * ref.y + k.y * ref.x};
             pos[v] = here + step * d;
             const double w = worst_at(v);
             if (w > best + 1e-12) {

@@ -57,7 +57,9 @@ TEST_CASE("a part meshes the same in every pose", "[mesh][pose]") {
         {mirror_x(), 1.0},
         {scaling(1e-3), 1e-3},
         {compose(scaling(1e3), rotation({0, 1, 1}, 2.0)), 1e3}};
-    for (const Pose& pose : poses) {
+    for (std::size_t k = 0; k < poses.size(); ++k) {
+      const Pose& pose = poses[k];
+      INFO("pose " << k << " of rotated+translated, mirrored, x1e-3, x1e3+rotated");
       const Part moved = build_part(transformed(raw, pose.t));
       MeshPartOptions o;
       o.size = h * pose.scale;
