@@ -101,12 +101,9 @@ int run_mesh(const std::vector<std::string>& argv) {
     doc["nodes"] = r.mesh.nodes.size();
     doc["valid"] = r.check.valid();
     doc["faces"] = r.stats.faces;
-    doc["faces_by_template"] = {{"grid", r.stats.by_template[0]},
-                                {"diamond", r.stats.by_template[1]},
-                                {"quad", r.stats.by_template[2]},
-                                {"ring", r.stats.by_template[3]},
-                                {"split", r.stats.by_template[4]},
-                                {"rows", r.stats.by_template[5]}};
+    for (std::size_t k = 0; k < kTemplateNames.size(); ++k)
+      doc["faces_by_template"][kTemplateNames[k]] = r.stats.by_template[k];
+    doc["narrow_fans_dropped"] = r.stats.narrow_fans;
     doc["parity_fixes"] = {{"boundary_pieces", r.stats.parity_boundary},
                            {"rail_segments", r.stats.parity_rails}};
     doc["seconds"] = {{"medial", r.times.medial}, {"rails", r.times.rails},

@@ -9,7 +9,6 @@
 namespace laytracks::detail {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 /// The unordered vertex pair of an edge as one key.
 std::uint64_t edge_key(std::int64_t a, std::int64_t b) {

@@ -39,6 +39,9 @@ constexpr double kRoundingSlack = 1e-7;
 /// A G-CUT-VERT within this x the part size of another break of its edge (or of the edge's
 /// end) is that node: ten times above the checker's closest allowed nodes.
 constexpr double kMergeBreakRel = 1e-8;
+/// Two rails from one boundary node closer in angle than this are not both kept (10 degrees:
+/// the quad at their tip would have a scaled Jacobian below sin 10 = 0.17).
+constexpr double kMinFanAngle = 10.0 * kPi / 180.0;
 /// Two MA points of a patch closer than this x the part size are one node.
 constexpr double kSamePointRel = 1e-9;
 
@@ -254,6 +257,7 @@ class QuadBuilder {
       r.count = edges_for(len);
       g.edges.push_back(r);
     }
+    drop_narrow_fans(g);
     drop_dangling_rails(g);
     trace_faces(pid, g);
   }
@@ -267,6 +271,49 @@ class QuadBuilder {
     c.piece = piece;
     c.forward = forward;
     g.edges.push_back(c);
+  }
+
+  /// Two rails leaving one boundary node (a concave corner's fan) less than kMinFanAngle apart
+  /// bound a sliver no quad fits well: of the closest pair of neighbouring rails, the longer is
+  /// dropped, and again until no pair is that close (its MA end may then dangle, and the rest
+  /// of its chain goes with it). Angles and lengths choose, never the order of the rails, so
+  /// that every pose drops the same rails.
+  void drop_narrow_fans(PatchGraph& g) {
+    std::map<std::uint32_t, std::vector<std::uint32_t>> at;  // boundary node -> its rails
+    for (std::uint32_t e = 0; e < g.edges.size(); ++e)
+      if (g.edges[e].rail) at[g.edges[e].a].push_back(e);
+    std::vector<bool> drop(g.edges.size(), false);
+    for (auto& [node, rails] : at) {
+      const Vec2 o = g.nodes[node].p;
+      auto dir = [&](std::uint32_t e) { return g.nodes[g.edges[e].b].p - o; };
+      std::sort(rails.begin(), rails.end(), [&](std::uint32_t x, std::uint32_t y) {
+        const Vec2 u = dir(x), v = dir(y);
+        return std::atan2(u.y, u.x) < std::atan2(v.y, v.x);
+      });
+      while (rails.size() >= 2) {
+        double closest = kMinFanAngle;
+        std::size_t pick = rails.size();
+        for (std::size_t k = 0; k < rails.size(); ++k) {
+          const Vec2 u = dir(rails[k]), v = dir(rails[(k + 1) % rails.size()]);
+          const double angle = std::abs(std::atan2(cross(u, v), dot(u, v)));
+          if (angle < closest) {
+            closest = angle;
+            pick = k;
+          }
+        }
+        if (pick == rails.size()) break;
+        const std::size_t other = (pick + 1) % rails.size();
+        const std::size_t gone =
+            norm(dir(rails[pick])) >= norm(dir(rails[other])) ? pick : other;
+        drop[rails[gone]] = true;
+        ++result_.stats.narrow_fans;
+        rails.erase(rails.begin() + static_cast<std::ptrdiff_t>(gone));
+      }
+    }
+    std::size_t k = 0;
+    g.edges.erase(std::remove_if(g.edges.begin(), g.edges.end(),
+                                 [&](const CEdge&) { return drop[k++]; }),
+                  g.edges.end());
   }
 
   /// Rails whose MA end meets no other rail bound no face: dropped (repeatedly).

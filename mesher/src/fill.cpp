@@ -27,6 +27,10 @@ const char* to_string(FillKind kind) {
       return "split";
     case FillKind::Rows:
       return "rows";
+    case FillKind::Cut:
+      return "cut";
+    case FillKind::Pairs:
+      return "pairs";
   }
   return "?";
 }
@@ -162,6 +166,27 @@ std::vector<Strip> strips_of(const FaceInput& face) {
       out.push_back(st);
     }
   }
+  // Any other face with an apex (two rails meeting at a boundary node, a zero-edge side):
+  // a wedge whose cap1 is all the rest of the face.
+  if (sd.size() != 4 && sd.size() >= 3) {
+    const auto n = static_cast<std::uint32_t>(face.cycle.size());
+    for (std::size_t s = 0; s < sd.size(); ++s) {
+      const FaceSide& apex = sd[s];
+      const FaceSide& next = sd[(s + 1) % sd.size()];
+      const FaceSide& prev = sd[(s + sd.size() - 1) % sd.size()];
+      if (apex.kind != K::Boundary || apex.edges != 0 || next.kind != K::Rail ||
+          prev.kind != K::Rail || next.edges + prev.edges >= n)
+        continue;
+      Strip st;
+      st.rail1 = run_of(face, prev.first, prev.edges);  // ends at the apex
+      st.cap2 = {apex.first};
+      st.rail2 = run_of(face, next.first, next.edges);  // starts there
+      st.cap1 = run_of(face, st.rail2.back(), n - next.edges - prev.edges);
+      st.joints1 = prev.joints;
+      st.joints2 = next.joints;
+      out.push_back(st);
+    }
+  }
   return out;
 }
 
@@ -274,14 +299,19 @@ FaceMesh fill_quad(const FaceInput& face) {
 
 /// Four nodes, one corner flat or reflex: an inner quad and four quads around it, so that
 /// every corner of the face gets an edge into it.
+/// Quad abcd (counter-clockwise) as a ring: an inner quad halfway to the centre, four around.
+void ring_into(Builder& m, const std::array<std::uint32_t, 4>& v) {
+  Vec2 c{0.0, 0.0};
+  for (std::uint32_t id : v) c = c + 0.25 * m.pos(id);
+  std::array<std::uint32_t, 4> inner{};
+  for (std::size_t i = 0; i < 4; ++i) inner[i] = m.add(lerp(c, m.pos(v[i]), 0.5));
+  for (std::size_t i = 0; i < 4; ++i) m.quad(v[i], v[(i + 1) % 4], inner[(i + 1) % 4], inner[i]);
+  m.quad(inner[0], inner[1], inner[2], inner[3]);
+}
+
 FaceMesh fill_ring(const FaceInput& face) {
   Builder m(face, FillKind::Ring);
-  Vec2 c{0.0, 0.0};
-  for (const Vec2& p : face.cycle) c = c + 0.25 * p;
-  std::uint32_t inner[4];
-  for (std::uint32_t i = 0; i < 4; ++i) inner[i] = m.add(lerp(c, face.cycle[i], 0.5));
-  for (std::uint32_t i = 0; i < 4; ++i) m.quad(i, (i + 1) % 4, inner[(i + 1) % 4], inner[i]);
-  m.quad(inner[0], inner[1], inner[2], inner[3]);
+  ring_into(m, {0, 1, 2, 3});
   FaceMesh r = m.finish();
   relax(r, face, 10);
   return r;
@@ -471,6 +501,279 @@ std::optional<FaceMesh> fill_fan_split(const FaceInput& face, std::uint32_t offs
   return r;
 }
 
+/// Interior angle of the counter-clockwise polygon `poly` at node i (radians, in (0, 2 pi)).
+double interior_angle(const std::vector<Vec2>& poly, std::size_t i) {
+  const std::size_t n = poly.size();
+  const Vec2 out = poly[(i + 1) % n] - poly[i], back = poly[(i + n - 1) % n] - poly[i];
+  double a = std::atan2(cross(out, back), dot(out, back));
+  if (a <= 0.0) a += 2.0 * kPi;
+  return a;
+}
+
+/// Counter-clockwise angle from `from` to `to`, in [0, 2 pi).
+double ccw_angle(Vec2 from, Vec2 to) {
+  double a = std::atan2(cross(from, to), dot(from, to));
+  if (a < 0.0) a += 2.0 * kPi;
+  return a;
+}
+
+/// One chord of the cut template: from node i to node j of the polygon through `inner` new
+/// nodes, and its score (higher is better).
+struct Chord {
+  std::uint32_t i = 0, j = 0;
+  std::vector<Vec2> inner;
+  double score = -std::numeric_limits<double>::infinity();
+};
+
+/// Worst corner of a four-node polygon as an angle in degrees (asin of the scaled Jacobian);
+/// -inf when a corner is flat or turns the wrong way.
+double quad_angle_score(const std::vector<Vec2>& q) {
+  const double j = min_scaled_jacobian(q[0], q[1], q[2], q[3]);
+  if (j <= kMinValidJacobian) return -std::numeric_limits<double>::infinity();
+  return std::asin(std::min(j, 1.0)) * (180.0 / kPi);
+}
+
+/// The best chord of a polygon (counter-clockwise, even node count >= 6) for the cut template;
+/// score -inf when none fits. Rules (docs/mesher.md, "Cut"): a chord joins two nodes that are
+/// not neighbours, inside the polygon; it gets the inner nodes that make both halves' node
+/// counts even and smaller than the polygon's, spaced as close to `h` (the polygon's mean edge)
+/// as parity allows. Its nodes lie on the straight segment, except a chord with one inner node
+/// that cuts one corner off as a quad: that node is pushed off the segment, away from the
+/// corner, so the quad has no flat corner. Score: the smallest angle it makes at its ends
+/// (capped at 90 degrees), or of a quad it cuts off (asin of its scaled Jacobian); lowered by
+/// 30 per unit of |ln(spacing / h)| and when it passes closer than 0.6 spacing to another node.
+std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) {
+  const auto n = static_cast<std::uint32_t>(poly.size());
+  double h = 0.0;
+  for (std::uint32_t k = 0; k < n; ++k) h += distance(poly[k], poly[(k + 1) % n]);
+  h /= n;
+  std::vector<double> angle(n);
+  for (std::uint32_t k = 0; k < n; ++k) angle[k] = interior_angle(poly, k);
+  constexpr double kDeg = 180.0 / kPi;
+  auto crosses_boundary = [&](Vec2 p, Vec2 q, std::uint32_t i, std::uint32_t j) {
+    for (std::uint32_t k = 0; k < n; ++k) {
+      const std::uint32_t k1 = (k + 1) % n;
+      if (k == i || k == j || k1 == i || k1 == j) continue;
+      if (segments_meet(p, q, poly[k], poly[k1])) return true;
+    }
+    return false;
+  };
+  std::vector<Chord> best;  // the `keep` best so far, best first
+  auto bar = [&] {
+    return best.size() < keep ? -std::numeric_limits<double>::infinity() : best.back().score;
+  };
+  std::vector<Vec2> half_a, half_b;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    for (std::uint32_t gap = 2; gap + 2 <= n; ++gap) {
+      const std::uint32_t j = (i + gap) % n;
+      if (j < i) continue;  // each chord once
+      const Vec2 d = poly[j] - poly[i];
+      const double len = norm(d);
+      if (len <= 0.0) continue;
+      const auto ideal = static_cast<std::int64_t>(std::floor(len / h + 0.5)) - 1;
+      for (std::int64_t count = std::max<std::int64_t>(0, ideal - 1); count <= ideal + 1; ++count) {
+        const auto in = static_cast<std::uint32_t>(count);
+        if ((gap + in + 1) % 2 != 0) continue;
+        if (gap + 1 + in >= n || n - gap + 1 + in >= n) continue;
+        std::vector<Vec2> inner;
+        for (std::uint32_t k = 1; k <= in; ++k)
+          inner.push_back(lerp(poly[i], poly[j], static_cast<double>(k) / (in + 1)));
+        const bool kite = in == 1 && (gap == 2 || n - gap == 2);
+        if (kite) {  // push the node away from the corner it cuts off
+          const Vec2 corner = poly[gap == 2 ? (i + 1) % n : (j + 1) % n];
+          inner[0] = inner[0] + 0.5 * (inner[0] - corner);
+        }
+        const Vec2 first = in ? inner.front() : poly[j], last = in ? inner.back() : poly[i];
+        const double ai = ccw_angle(poly[(i + 1) % n] - poly[i], first - poly[i]);
+        const double aj = ccw_angle(poly[(j + 1) % n] - poly[j], last - poly[j]);
+        if (ai <= 0.0 || ai >= angle[i] || aj <= 0.0 || aj >= angle[j]) continue;
+        double score = std::min({ai, angle[i] - ai, aj, angle[j] - aj, 0.5 * kPi}) * kDeg;
+        if (score <= bar()) continue;
+        const double spacing = len / static_cast<double>(in + 1);
+        score -= 30.0 * std::abs(std::log(spacing / h));
+        if (score <= bar()) continue;
+        if (kite ? crosses_boundary(poly[i], inner[0], i, j) ||
+                       crosses_boundary(inner[0], poly[j], i, j) || !inside_polygon(inner[0], poly)
+                 : crosses_boundary(poly[i], poly[j], i, j))
+          continue;
+        double clearance = std::numeric_limits<double>::infinity();
+        for (std::uint32_t k = 0; k < n; ++k) {
+          if (k == i || k == j) continue;
+          const double t = std::clamp(dot(poly[k] - poly[i], d) / (len * len), 0.0, 1.0);
+          clearance = std::min(clearance, distance(poly[k], poly[i] + t * d));
+        }
+        if (!kite) score = std::min(score, 90.0 * clearance / (0.6 * spacing));
+        // Halves that are quads already: their worst corner counts.
+        half_a.clear();
+        half_b.clear();
+        for (std::uint32_t k = i; k != j; k = (k + 1) % n) half_a.push_back(poly[k]);
+        half_a.push_back(poly[j]);
+        half_a.insert(half_a.end(), inner.rbegin(), inner.rend());
+        for (std::uint32_t k = j; k != i; k = (k + 1) % n) half_b.push_back(poly[k]);
+        half_b.push_back(poly[i]);
+        half_b.insert(half_b.end(), inner.begin(), inner.end());
+        if (half_a.size() == 4) score = std::min(score, quad_angle_score(half_a));
+        if (half_b.size() == 4) score = std::min(score, quad_angle_score(half_b));
+        if (score <= bar() || score == -std::numeric_limits<double>::infinity()) continue;
+        if (best.size() == keep) best.pop_back();
+        const auto at = std::find_if(best.begin(), best.end(),
+                                     [&](const Chord& c) { return c.score < score; });
+        best.insert(at, Chord{i, j, std::move(inner), score});
+      }
+    }
+  }
+  return best;
+}
+
+/// Splits the polygon `ids` (node ids of m, counter-clockwise) by chords, again and again,
+/// down to quads: the best chord first, the next ones when a half cannot be split (depth-first,
+/// at most kCutChoices per polygon and `budget` polygons in all). False when it finds no way.
+constexpr std::size_t kCutChoices = 4;
+
+bool cut_down(Builder& m, const std::vector<std::uint32_t>& ids, int& budget) {
+  const auto n = static_cast<std::uint32_t>(ids.size());
+  if (n == 4) {
+    m.quad(ids[0], ids[1], ids[2], ids[3]);
+    return true;
+  }
+  if (n < 6 || --budget < 0) return false;
+  std::vector<Vec2> poly;
+  for (std::uint32_t id : ids) poly.push_back(m.pos(id));
+  for (const Chord& c : best_chords(poly, kCutChoices)) {
+    const std::size_t interior = m.out.interior.size(), quads = m.out.quads.size();
+    std::vector<std::uint32_t> chord;  // from i to j, ends excluded
+    for (const Vec2& p : c.inner) chord.push_back(m.add(p));
+    std::vector<std::uint32_t> a, b;
+    for (std::uint32_t k = c.i; k != c.j; k = (k + 1) % n) a.push_back(ids[k]);
+    a.push_back(ids[c.j]);
+    a.insert(a.end(), chord.rbegin(), chord.rend());
+    for (std::uint32_t k = c.j; k != c.i; k = (k + 1) % n) b.push_back(ids[k]);
+    b.push_back(ids[c.i]);
+    b.insert(b.end(), chord.begin(), chord.end());
+    if (cut_down(m, a, budget) && cut_down(m, b, budget)) return true;
+    m.out.interior.resize(interior);
+    m.out.quads.resize(quads);
+    if (budget < 0) return false;
+  }
+  return false;
+}
+
+/// Triangle pairs: the face triangulated (all its nodes, the worst triangle as good as it can
+/// be), then each triangle given an odd number of its diagonals' midpoints (the one set of
+/// diagonals that makes every triangle's degree in the dual tree odd; it exists because the
+/// tree has n - 2 nodes, an even number). A triangle with three midpoints becomes three quads
+/// round its centre; two triangles that share their one marked diagonal become one quad (the
+/// midpoint dropped; when that quad would have a flat or reflex corner, each triangle becomes a
+/// ring of five round its corners and the midpoint); a triangle with
+/// one midpoint whose neighbour has three becomes a ring of five round its four nodes (the
+/// midpoint a flat corner, which the ring's two quads there split). It needs nothing of the
+/// face but a triangulation: the template of last resort.
+std::optional<FaceMesh> fill_pairs(const FaceInput& face) {
+  const auto n = static_cast<std::uint32_t>(face.cycle.size());
+  if (n < 4 || n % 2 != 0) return std::nullopt;
+  const auto& poly = face.cycle;
+  const auto tris = triangulate(poly, [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    return triangle_shape(poly[a], poly[b], poly[c]);
+  });
+  if (tris.empty()) return std::nullopt;
+  using Edge = std::pair<std::uint32_t, std::uint32_t>;
+  auto diagonal = [&](std::uint32_t a, std::uint32_t b) {
+    return b - a > 1 && !(a == 0 && b == n - 1);
+  };
+  // Children come after their parent in `tris`; each non-root triangle's parent edge is (i, j).
+  std::map<Edge, bool> marked;
+  for (auto t = tris.rbegin(); t != tris.rend(); ++t) {
+    const auto [i, k, j] = *t;
+    int odd = 0;
+    if (diagonal(i, k)) odd += marked[{i, k}] ? 1 : 0;
+    if (diagonal(k, j)) odd += marked[{k, j}] ? 1 : 0;
+    if (diagonal(i, j)) {
+      marked[{i, j}] = odd % 2 == 0;
+    } else if (odd % 2 == 0) {
+      return std::nullopt;  // cannot happen: the root's parity follows from n being even
+    }
+  }
+  auto is_marked = [&](std::uint32_t a, std::uint32_t b) {
+    const Edge e{std::min(a, b), std::max(a, b)};
+    return diagonal(e.first, e.second) && marked[e];
+  };
+  std::map<Edge, std::vector<std::size_t>> sharing;  // marked diagonal -> its two triangles
+  std::vector<int> degree(tris.size(), 0);
+  for (std::size_t t = 0; t < tris.size(); ++t) {
+    const auto [i, k, j] = tris[t];
+    for (const Edge& e : {Edge{i, k}, Edge{k, j}, Edge{i, j}}) {
+      if (is_marked(e.first, e.second)) {
+        sharing[e].push_back(t);
+        ++degree[t];
+      }
+    }
+  }
+  Builder m(face, FillKind::Pairs);
+  std::map<Edge, std::uint32_t> mids;
+  auto mid = [&](std::uint32_t a, std::uint32_t b) {
+    const Edge e{std::min(a, b), std::max(a, b)};
+    const auto it = mids.find(e);
+    if (it != mids.end()) return it->second;
+    const std::uint32_t id = m.add(lerp(poly[a], poly[b], 0.5));
+    mids.emplace(e, id);
+    return id;
+  };
+  for (std::size_t t = 0; t < tris.size(); ++t) {
+    const auto [i, k, j] = tris[t];
+    if (degree[t] == 3) {
+      const std::uint32_t ik = mid(i, k), kj = mid(k, j), ij = mid(i, j);
+      const Vec2 g = (1.0 / 6.0) * (poly[i] + poly[k] + poly[j] + m.pos(ik) + m.pos(kj) + m.pos(ij));
+      const std::uint32_t c = m.add(g);
+      m.quad(i, ik, c, ij);
+      m.quad(k, kj, c, ik);
+      m.quad(j, ij, c, kj);
+      continue;
+    }
+    // One marked edge x -> y, counter-clockwise in the triangle i k j; z the third corner.
+    const std::array<std::uint32_t, 3> v{i, k, j};
+    std::size_t s = 0;
+    while (!is_marked(v[s], v[(s + 1) % 3])) ++s;
+    const std::uint32_t x = v[s], y = v[(s + 1) % 3], z = v[(s + 2) % 3];
+    const auto& pair = sharing[{std::min(x, y), std::max(x, y)}];
+    const std::size_t other = pair[0] == t ? pair[1] : pair[0];
+    if (degree[other] == 1) {
+      if (other < t) continue;  // emitted with the other one
+      std::uint32_t w = 0;
+      for (std::uint32_t u : tris[other])
+        if (u != x && u != y) w = u;
+      // A flat or reflex corner (a node on a straight side, or a reflex node) cannot be
+      // relaxed away: each triangle a ring of five round its corners and the shared midpoint.
+      if (min_scaled_jacobian(poly[y], poly[z], poly[x], poly[w]) < kSmoothFloor) {
+        const std::uint32_t c = mid(x, y);
+        ring_into(m, {y, z, x, c});
+        ring_into(m, {x, w, y, c});
+      } else {
+        m.quad(y, z, x, w);
+      }
+    } else {
+      ring_into(m, {y, z, x, mid(x, y)});
+    }
+  }
+  FaceMesh r = m.finish();
+  relax(r, face, 60);
+  return r;
+}
+
+/// Cut: recursive decomposition by chords (best_chord) down to quads, then the interior nodes
+/// relaxed. The template of last resort: it needs nothing of the face but a simple polygon.
+std::optional<FaceMesh> fill_cut(const FaceInput& face) {
+  const auto n = static_cast<std::uint32_t>(face.cycle.size());
+  if (n < 6 || n % 2 != 0) return std::nullopt;
+  Builder m(face, FillKind::Cut);
+  std::vector<std::uint32_t> ids(n);
+  for (std::uint32_t k = 0; k < n; ++k) ids[k] = k;
+  int budget = 4 * static_cast<int>(n);
+  if (!cut_down(m, ids, budget)) return std::nullopt;
+  FaceMesh r = m.finish();
+  relax(r, face, 30);
+  return r;
+}
+
 std::optional<FaceMesh> fill_any(const FaceInput& face, int depth);
 
 std::optional<FaceMesh> fill_rows(const FaceInput& face, const Strip& st, int depth) {
@@ -512,6 +815,13 @@ std::optional<FaceMesh> fill_rows(const FaceInput& face, const Strip& st, int de
   return best;
 }
 
+/// Templates' worst corners are compared in steps of this; any valid one beats every invalid.
+constexpr double kChoiceStep = 0.05;
+double quantised(double jacobian) {
+  const double step = std::floor(jacobian / kChoiceStep);
+  return jacobian > kMinValidJacobian ? step : step - 1e6;
+}
+
 /// Every template in turn; the first good one, else the best.
 std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
   const std::size_t n = face.cycle.size();
@@ -519,7 +829,11 @@ std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
   static const bool debug = std::getenv("LAYTRACKS_DEBUG_FACE") != nullptr;
   auto consider = [&](std::optional<FaceMesh> m) {
     if (debug && m) std::fprintf(stderr, "  [%d] %s J=%g\n", depth, to_string(m->kind), m->min_jacobian);
-    if (m && (!best || m->min_jacobian > best->min_jacobian)) best = std::move(m);
+    // A later template must be better by a whole kChoiceStep: relaxation is sensitive to the
+    // last bits of the input, and a choice between two nearly equal templates would otherwise
+    // differ between poses of one part (and with it the element count).
+    if (m && (!best || quantised(m->min_jacobian) > quantised(best->min_jacobian)))
+      best = std::move(m);
     return best && best->min_jacobian >= kAcceptJacobian;
   };
   const std::vector<Strip> strips = strips_of(face);
@@ -537,7 +851,11 @@ std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
     if (consider(fill_split(face, 0))) return best;
     if (consider(fill_split(face, 1))) return best;
     if (consider(fill_fan_split(face, 0))) return best;
-    consider(fill_fan_split(face, 1));
+    if (consider(fill_fan_split(face, 1))) return best;
+    if (consider(fill_cut(face))) return best;
+  }
+  if (n >= 4) {
+    consider(fill_pairs(face));
   }
   return best;
 }
@@ -665,6 +983,12 @@ void untangle_nodes(std::vector<Vec2>& pos,
             step = std::min(step, distance(pos[v], pos[quads[q][(k + 3) % 4]]));
           }
       step *= 0.25;
+      Vec2 ref{1.0, 0.0};
+      for (std::size_t k = 0; k < 4; ++k)
+        if (quads[around[v].front()][k] == v) {
+          const Vec2 e = pos[quads[around[v].front()][(k + 1) % 4]] - pos[v];
+          if (norm(e) > 0.0) ref = (1.0 / norm(e)) * e;
+        }
       for (int shrink = 0; shrink < 6 && step > 0.0; ++shrink, step *= 0.5) {
         bool better = true;
         for (int walk = 0; better && walk < 16; ++walk) {
@@ -672,7 +996,10 @@ void untangle_nodes(std::vector<Vec2>& pos,
           const Vec2 here = pos[v];
           Vec2 best_pos = here;
           double best = current;
-          for (const Vec2& d : kDirs) {
+          for (const Vec2& k : kDirs) {
+            // Directions turn with the node's first edge, not with the frame: every pose of a
+            // part relaxes the same way.
+            const Vec2 d{k.x * ref.x - k.y * ref.y, k.x * ref.y + k.y * ref.x};
             pos[v] = here + step * d;
             const double w = worst_at(v);
             if (w > best + 1e-12) {

@@ -36,6 +36,8 @@ enum class FillKind : std::uint8_t {
   Ring,     ///< four nodes with a flat corner: an inner quad and four around it
   Split,    ///< any other face: a coarse triangulation, each triangle split into three quads
   Rows,     ///< rows from a one-edge cap, the rest by another template
+  Cut,      ///< any simple polygon: cut by chords into smaller polygons, down to quads
+  Pairs,    ///< any simple polygon: triangulated, triangles paired or split into quads
 };
 const char* to_string(FillKind kind);
 

@@ -12,7 +12,6 @@
 namespace laytracks {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = 180.0 / kPi;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 

@@ -2,9 +2,7 @@
 // the same mesh in every pose, the same bytes on every run.
 #include <catch2/catch.hpp>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <set>
 
 #include "laytracks/brep/build.hpp"
 #include "laytracks/io/brep_json.hpp"
@@ -14,25 +12,7 @@
 using namespace laytracks;
 using namespace laytracks::test;
 
-namespace {
-
-std::set<std::string> known_refusals() {
-  std::set<std::string> out;
-  std::ifstream in(test_data_dir() + "/mesh_known_refusals.txt");
-  std::string line;
-  while (std::getline(in, line))
-    if (!line.empty() && line[0] != '#') out.insert(line);
-  return out;
-}
-
-std::string name_of(const std::string& path) {
-  return std::filesystem::path(path).filename().string();
-}
-
-}  // namespace
-
-TEST_CASE("every part meshes to a valid all-quad mesh, or is refused loudly", "[mesh]") {
-  const auto refusals = known_refusals();
+TEST_CASE("every part meshes to a valid all-quad mesh", "[mesh]") {
   std::size_t meshed = 0;
   for (const std::string& path : all_case_files()) {
     const Part part = load_part(path);
@@ -53,19 +33,14 @@ TEST_CASE("every part meshes to a valid all-quad mesh, or is refused loudly", "[
     } catch (const InvalidMeshError& e) {
       FAIL("an invalid mesh reached the end of the pipeline: " << e.what());
     } catch (const InternalError& e) {
-      // A refusal: allowed only for the parts listed, and it must say where.
-      INFO(e.what());
-      CHECK(refusals.count(name_of(path)) == 1);
-      CHECK(std::string(e.what()).find("patch") != std::string::npos);
+      FAIL("refused: " << e.what());
     }
   }
-  CHECK(meshed + refusals.size() >= all_case_files().size());
+  CHECK(meshed == all_case_files().size());
 }
 
 TEST_CASE("a part meshes the same in every pose", "[mesh][pose]") {
-  const auto refusals = known_refusals();
   for (const std::string& path : all_case_files()) {
-    if (refusals.count(name_of(path))) continue;
     INFO(path);
     const RawPart raw = read_brep_json(path);
     const Part part = build_part(raw);
@@ -82,7 +57,9 @@ TEST_CASE("a part meshes the same in every pose", "[mesh][pose]") {
         {mirror_x(), 1.0},
         {scaling(1e-3), 1e-3},
         {compose(scaling(1e3), rotation({0, 1, 1}, 2.0)), 1e3}};
-    for (const Pose& pose : poses) {
+    for (std::size_t k = 0; k < poses.size(); ++k) {
+      const Pose& pose = poses[k];
+      INFO("pose " << k << " of rotated+translated, mirrored, x1e-3, x1e3+rotated");
       const Part moved = build_part(transformed(raw, pose.t));
       MeshPartOptions o;
       o.size = h * pose.scale;

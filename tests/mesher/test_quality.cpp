@@ -11,7 +11,6 @@ using namespace laytracks::test;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 const Vec3 kZ{0.0, 0.0, 1.0};
 
 std::array<Vec3, 4> quad(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {

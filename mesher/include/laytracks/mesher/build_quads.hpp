@@ -19,11 +19,16 @@ struct QuadOptions {
   double size = 0.0;
 };
 
+/// Names of the face templates, in mesher_detail::FillKind order (docs/mesher.md).
+constexpr std::array<const char*, 8> kTemplateNames = {"grid", "diamond", "quad", "ring",
+                                                       "split", "rows", "cut", "pairs"};
+
 /// What the quad stage did, for reports and tests.
 struct QuadStats {
   std::size_t faces = 0;  ///< faces of the patches cut by their rails
-  /// Faces per template: grid, diamond, quad, ring, split, rows (mesher_detail::FillKind order).
-  std::array<std::size_t, 6> by_template{};
+  /// Faces per template, in mesher_detail::FillKind order (kTemplateNames).
+  std::array<std::size_t, 8> by_template{};
+  std::size_t narrow_fans = 0;     ///< rails dropped: under 10 degrees from another at a node
   std::size_t dangling_rails = 0;  ///< rail segments left out: their MA end met no other rail
   std::size_t parity_boundary = 0;  ///< boundary pieces given one more edge for parity
   std::size_t parity_rails = 0;     ///< rail segments given one more edge for parity
