@@ -31,6 +31,8 @@ const char* to_string(FillKind kind) {
       return "cut";
     case FillKind::Pairs:
       return "pairs";
+    case FillKind::Strip:
+      return "strip";
   }
   return "?";
 }
@@ -41,8 +43,8 @@ double min_scaled_jacobian(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   for (int i = 0; i < 4; ++i) {
     const Vec2 e1 = p[(i + 1) % 4] - p[i];
     const Vec2 e0 = p[(i + 3) % 4] - p[i];
-    const double l = norm(e1) * norm(e0);
-    const double j = l > 0.0 ? cross(e1, e0) / l : -1.0;
+    const double l2 = dot(e1, e1) * dot(e0, e0);  // one square root, not two hypot calls
+    const double j = l2 > 0.0 ? cross(e1, e0) / std::sqrt(l2) : -1.0;
     worst = std::min(worst, j);
   }
   return worst;
@@ -815,6 +817,92 @@ std::optional<FaceMesh> fill_rows(const FaceInput& face, const Strip& st, int de
   return best;
 }
 
+/// Strip: a long face between two rails whose caps or rails do not match (so no grid): rows
+/// of cap1's width laid from cap1 and rows of cap2's width from cap2 along the rails, straight
+/// rungs across, until a short remainder in the middle (its rails about as long as the strip
+/// is wide, or as the mismatch) takes the change of width by any other template. Keeps long
+/// strips out of the O(n^3) templates and puts the irregular quads in one place.
+std::optional<FaceMesh> fill_strip(const FaceInput& face, const Strip& st, int depth) {
+  if (depth > 1 || st.cap1.size() < 2 || st.cap2.size() < 2) return std::nullopt;
+  const auto a = static_cast<std::uint32_t>(st.cap1.size() - 1);
+  const auto c = static_cast<std::uint32_t>(st.cap2.size() - 1);
+  const auto n1 = static_cast<std::uint32_t>(st.rail1.size() - 1);
+  const auto n2 = static_cast<std::uint32_t>(st.rail2.size() - 1);
+  const std::uint32_t lo = std::min(n1, n2);
+  const std::uint32_t mismatch = (a > c ? a - c : c - a) + (n1 > n2 ? n1 - n2 : n2 - n1);
+  const std::uint32_t keep = std::max({a, c, mismatch, 2u});
+  if (lo <= keep) return std::nullopt;
+  const std::uint32_t r1 = (lo - keep) / 2, r2 = lo - keep - r1;
+  Builder m(face, FillKind::Strip);
+  // Rung k from cap1 joins L(k) = rail2[n2 - k] to R(k) = rail1[k] with a edges spaced like
+  // cap1; rung k from cap2 joins rail1[n1 - k] to rail2[k] with c edges spaced like cap2.
+  auto params = [&](const std::vector<std::uint32_t>& cap) {
+    std::vector<double> t(cap.size(), 0.0);
+    for (std::size_t k = 1; k < cap.size(); ++k)
+      t[k] = t[k - 1] + distance(m.pos(cap[k - 1]), m.pos(cap[k]));
+    for (double& x : t) x = t.back() > 0.0 ? x / t.back() : 0.0;
+    return t;
+  };
+  auto lay_rows = [&](const std::vector<std::uint32_t>& cap, std::uint32_t rows,
+                      auto from, auto to) {
+    const std::vector<double> t = params(cap);
+    std::vector<std::uint32_t> prev = cap, rung(cap.size());
+    for (std::uint32_t k = 1; k <= rows; ++k) {
+      rung.front() = from(k);
+      rung.back() = to(k);
+      for (std::size_t i = 1; i + 1 < cap.size(); ++i)
+        rung[i] = m.add(lerp(m.pos(rung.front()), m.pos(rung.back()), t[i]));
+      for (std::size_t i = 0; i + 1 < cap.size(); ++i) m.quad(prev[i], prev[i + 1], rung[i + 1], rung[i]);
+      prev = rung;
+    }
+    return prev;
+  };
+  const std::vector<std::uint32_t> end1 = lay_rows(
+      st.cap1, r1, [&](std::uint32_t k) { return st.rail2[n2 - k]; },
+      [&](std::uint32_t k) { return st.rail1[k]; });
+  const std::vector<std::uint32_t> end2 = lay_rows(
+      st.cap2, r2, [&](std::uint32_t k) { return st.rail1[n1 - k]; },
+      [&](std::uint32_t k) { return st.rail2[k]; });
+  // The remainder, counter-clockwise: end1, rail1 from r1 to n1 - r2, end2, rail2 from r2 to
+  // n2 - r1; its sides a boundary (the rung), a rail, a boundary, a rail.
+  FaceInput rest;
+  std::vector<std::uint32_t> ids;
+  auto push = [&](std::uint32_t id) {
+    ids.push_back(id);
+    rest.cycle.push_back(m.pos(id));
+  };
+  auto side = [&](FaceSide::Kind kind, std::uint32_t edges, const std::vector<std::uint32_t>& joints,
+                  std::uint32_t shift) {
+    FaceSide sd;
+    sd.kind = kind;
+    sd.first = static_cast<std::uint32_t>(ids.size());
+    sd.edges = edges;
+    for (std::uint32_t j : joints)
+      if (j > shift && j < shift + edges) sd.joints.push_back(j - shift);
+    rest.sides.push_back(sd);
+  };
+  side(FaceSide::Kind::Boundary, a, {}, 0);
+  for (std::size_t i = 0; i < a; ++i) push(end1[i]);
+  side(FaceSide::Kind::Rail, n1 - r1 - r2, st.joints1, r1);
+  for (std::uint32_t k = r1; k < n1 - r2; ++k) push(st.rail1[k]);
+  side(FaceSide::Kind::Boundary, c, {}, 0);
+  for (std::size_t i = 0; i < c; ++i) push(end2[i]);
+  side(FaceSide::Kind::Rail, n2 - r1 - r2, st.joints2, r2);
+  for (std::uint32_t k = r2; k < n2 - r1; ++k) push(st.rail2[k]);
+  const std::optional<FaceMesh> sub = fill_any(rest, depth + 1);
+  if (!sub) return std::nullopt;
+  std::vector<std::uint32_t> map(ids);
+  for (const Vec2& p : sub->interior) map.push_back(m.add(p));
+  for (const auto& q : sub->quads) m.quad(map[q[0]], map[q[1]], map[q[2]], map[q[3]]);
+  FaceMesh r = m.finish();
+  if (r.min_jacobian < kAcceptJacobian) relax(r, face, 30);
+  return r;
+}
+
+/// Faces with more nodes than this try the split, cut and pairs templates (O(n^3)) only when
+/// the structured templates gave no valid quads.
+constexpr std::size_t kLargeFace = 48;
+
 /// Templates' worst corners are compared in steps of this; any valid one beats every invalid.
 constexpr double kChoiceStep = 0.05;
 double quantised(double jacobian) {
@@ -847,16 +935,18 @@ std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
   }
   for (const Strip& st : strips)
     if (consider(fill_rows(face, st, depth))) return best;
-  if (n >= 6) {
+  for (const Strip& st : strips)
+    if (consider(fill_strip(face, st, depth))) return best;
+  // The O(n^3) templates only for small faces, or when nothing structured gave valid quads.
+  const bool costly_ok = n <= kLargeFace || !best || best->min_jacobian <= kMinValidJacobian;
+  if (n >= 6 && costly_ok) {
     if (consider(fill_split(face, 0))) return best;
     if (consider(fill_split(face, 1))) return best;
     if (consider(fill_fan_split(face, 0))) return best;
     if (consider(fill_fan_split(face, 1))) return best;
     if (consider(fill_cut(face))) return best;
   }
-  if (n >= 4) {
-    consider(fill_pairs(face));
-  }
+  if (n >= 4 && costly_ok) consider(fill_pairs(face));
   return best;
 }
 

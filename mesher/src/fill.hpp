@@ -38,6 +38,7 @@ enum class FillKind : std::uint8_t {
   Rows,     ///< rows from a one-edge cap, the rest by another template
   Cut,      ///< any simple polygon: cut by chords into smaller polygons, down to quads
   Pairs,    ///< any simple polygon: triangulated, triangles paired or split into quads
+  Strip,    ///< a long strip whose caps or rails differ: rows from both caps, a short remainder
 };
 const char* to_string(FillKind kind);
 

@@ -20,14 +20,14 @@ struct QuadOptions {
 };
 
 /// Names of the face templates, in mesher_detail::FillKind order (docs/mesher.md).
-constexpr std::array<const char*, 8> kTemplateNames = {"grid", "diamond", "quad", "ring",
-                                                       "split", "rows", "cut", "pairs"};
+constexpr std::array<const char*, 9> kTemplateNames = {
+    "grid", "diamond", "quad", "ring", "split", "rows", "cut", "pairs", "strip"};
 
 /// What the quad stage did, for reports and tests.
 struct QuadStats {
   std::size_t faces = 0;  ///< faces of the patches cut by their rails
   /// Faces per template, in mesher_detail::FillKind order (kTemplateNames).
-  std::array<std::size_t, 8> by_template{};
+  std::array<std::size_t, 9> by_template{};
   std::size_t narrow_fans = 0;     ///< rails dropped: under 10 degrees from another at a node
   std::size_t dangling_rails = 0;  ///< rail segments left out: their MA end met no other rail
   std::size_t parity_boundary = 0;  ///< boundary pieces given one more edge for parity
