@@ -59,7 +59,7 @@ const char* const kBatchHelp =
     "  -j N             parts meshed at once (default: the number of hardware threads)\n"
     "  --size W         element size for every part (default: each part's mesh.size, else 1/40\n"
     "                   of its size)\n"
-    "  --smooth N       Laplacian sweeps over interior nodes (default 10)\n"
+    "  --smooth N       Laplacian then untangling sweeps over interior nodes (default 10)\n"
     "  --chord-tol T    sagitta bound for arcs (default 1e-3 x each part's size)\n"
     "  --quiet          no progress on stderr (the table is still printed)\n"
     "\n"

@@ -34,7 +34,7 @@ const char* const kDrawHelp =
     "  --size W       track width and element size (default: the part's mesh.size, else 1/40\n"
     "                 of the part's size, twice the largest distance of a vertex from their\n"
     "                 centroid)\n"
-    "  --smooth N     mesh: Laplacian sweeps over interior nodes (default 10)\n"
+    "  --smooth N     mesh: Laplacian then untangling sweeps (default 10)\n"
     "  --view V       unfolded or oblique\n"
     "  --chord-tol T  sagitta bound for arcs\n";
 
