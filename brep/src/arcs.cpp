@@ -97,10 +97,7 @@ void fit_circle(const BuildState& s, std::size_t index, ArcInfo& arc) {
 
 /// Number of segments for an arc: sagitta <= chord_tol and at most 90 degrees each, >= 2.
 std::size_t segment_count(const BuildState& s, std::size_t index, const ArcInfo& arc) {
-  const double x = s.part.chord_tol / arc.radius;
-  // 2 acos(1 - x) written as 4 asin(sqrt(x / 2)): no cancellation when x is tiny.
-  double theta_max = x >= 1.0 ? kPi : 4.0 * std::asin(std::sqrt(0.5 * x));
-  theta_max = std::min(theta_max, 0.5 * kPi);
+  const double theta_max = max_chord_angle(arc.radius, s.part.chord_tol);
   const double needed = std::ceil(arc.span / theta_max - 1e-9);
   if (!(needed <= static_cast<double>(kMaxArcSegments))) {
     const std::string count =
@@ -171,6 +168,18 @@ void build_arcs(BuildState& s, const BuildOptions& options) {
     for (const auto& loop : s.raw.patches[p].loops)
       s.chains[p].push_back(make_chain(s, loop, by_edge));
   }
+  for (const ArcInfo& arc : s.arcs) {
+    PartArc out;
+    out.from = arc.from;
+    out.to = arc.to;
+    out.center = arc.center;
+    out.radius = arc.radius;
+    out.e1 = normalized(s.part.vertices[arc.from.index()].position - arc.center);
+    out.e2 = cross(arc.axis, out.e1);
+    out.span = arc.span;
+    out.points = arc.points;
+    s.part.arcs.push_back(std::move(out));
+  }
   if (s.arcs.empty()) return;
   std::vector<VertexId> ids;
   for (std::size_t i = 0; i < s.used.size(); ++i) {
@@ -181,3 +190,19 @@ void build_arcs(BuildState& s, const BuildOptions& options) {
 }
 
 }  // namespace laytracks::detail
+
+namespace laytracks {
+
+double max_chord_angle(double radius, double chord_tol) {
+  const double x = chord_tol / radius;
+  // 2 acos(1 - x) written as 4 asin(sqrt(x / 2)): no cancellation when x is tiny.
+  const double theta_max = x >= 1.0 ? kPi : 4.0 * std::asin(std::sqrt(0.5 * x));
+  return std::min(theta_max, 0.5 * kPi);
+}
+
+Vec3 PartArc::at(double u) const {
+  const double t = span * u;
+  return center + radius * (std::cos(t) * e1 + std::sin(t) * e2);
+}
+
+}  // namespace laytracks

@@ -63,9 +63,9 @@ struct CNode {  // a node of a patch's coarse graph
 struct CEdge {
   std::uint32_t a = 0, b = 0;  ///< boundary: along the loop; rail: from the cut to the MA point
   bool rail = false;
-  EdgeId edge;                 ///< boundary: the B-Rep edge
+  std::uint32_t edge = 0;      ///< boundary: the unit (a straight B-Rep edge, or an arc)
   std::uint32_t piece = 0;     ///< boundary: its piece on that edge
-  bool forward = true;         ///< boundary: loop direction = edge direction
+  bool forward = true;         ///< boundary: loop direction = unit direction
   std::uint32_t count = 1;     ///< rail: mesh edges
   std::vector<std::uint32_t> inner;  ///< rail: inner nodes from a to b
   std::uint32_t face[2] = {kNone, kNone};  ///< faces on the left of a->b and of b->a
@@ -111,33 +111,80 @@ class QuadBuilder {
 
   // ---- 1. boundary nodes ----------------------------------------------------------------
   void make_boundary_nodes() {
+    // Units: every straight B-Rep edge is one; every arc (all the edges that discretise it) is
+    // one, with its nodes on the circle and no node at its discretisation points.
+    const std::size_t ne = part_.edges.size();
+    unit_of_edge_.assign(ne, 0);
+    units_.clear();
+    std::vector<std::uint32_t> unit_of_arc(part_.arcs.size(), kNone);
+    for (std::size_t e = 0; e < ne; ++e) {
+      const BrepEdge& edge = part_.edges[e];
+      if (edge.arc < 0) {
+        unit_of_edge_[e] = static_cast<std::uint32_t>(units_.size());
+        units_.push_back({-1, EdgeId(e), edge.a, edge.b});
+        continue;
+      }
+      const auto arc = static_cast<std::size_t>(edge.arc);
+      if (unit_of_arc[arc] == kNone) {
+        unit_of_arc[arc] = static_cast<std::uint32_t>(units_.size());
+        units_.push_back({edge.arc, EdgeId(e), part_.arcs[arc].from, part_.arcs[arc].to});
+      }
+      unit_of_edge_[e] = unit_of_arc[arc];
+    }
+    // Position of a discretisation point along its arc: index / segments.
+    std::map<std::uint32_t, std::pair<std::uint32_t, double>> arc_point;  // vertex -> (unit, u)
+    for (std::size_t a = 0; a < part_.arcs.size(); ++a) {
+      const PartArc& arc = part_.arcs[a];
+      const double n = static_cast<double>(arc.points.size() + 1);
+      for (std::size_t k = 0; k < arc.points.size(); ++k)
+        arc_point[arc.points[k].value] = {unit_of_arc[a], static_cast<double>(k + 1) / n};
+      arc_point[arc.from.value].second = 0.0;  // placeholders, never looked up as arc points
+    }
+    auto arc_u = [&](const PartArc& arc, VertexId v) {
+      if (v == arc.from) return 0.0;
+      if (v == arc.to) return 1.0;
+      return arc_point.at(v.value).second;
+    };
     vertex_node_.assign(part_.vertices.size(), kNone);
     for (const Patch& patch : part_.patches)
       for (const Loop& loop : patch.loops)
         for (VertexId v : loop.vertices)
-          if (vertex_node_[v.index()] == kNone)
+          if (vertex_node_[v.index()] == kNone && !part_.vertices[v.index()].from_arc)
             vertex_node_[v.index()] = add_node(part_.vertices[v.index()].position);
-    std::vector<std::vector<std::pair<double, std::uint32_t>>> breaks(part_.edges.size());
+    std::vector<std::vector<std::pair<double, std::uint32_t>>> breaks(units_.size());
     gcut_node_.assign(graph_.gverts.size(), kNone);
     for (std::size_t g = 0; g < graph_.gverts.size(); ++g) {
       const GCutVert& gv = graph_.gverts[g];
-      if (gv.vertex) {
+      const auto gid = static_cast<std::uint32_t>(g);
+      if (gv.vertex && !part_.vertices[gv.vertex->index()].from_arc) {
         gcut_node_[g] = vertex_node_[gv.vertex->index()];
         continue;
       }
-      breaks[gv.edge.index()].push_back({gv.t, static_cast<std::uint32_t>(g)});
+      if (gv.vertex) {  // a discretisation point of an arc: a break of the arc like any other
+        const auto& [unit, u] = arc_point.at(gv.vertex->value);
+        breaks[unit].push_back({u, gid});
+        continue;
+      }
+      const std::uint32_t unit = unit_of_edge_[gv.edge.index()];
+      const Unit& un = units_[unit];
+      if (un.arc < 0) {
+        breaks[unit].push_back({gv.t, gid});
+      } else {
+        const PartArc& arc = part_.arcs[static_cast<std::size_t>(un.arc)];
+        const BrepEdge& edge = part_.edges[gv.edge.index()];
+        const double ua = arc_u(arc, edge.a), ub = arc_u(arc, edge.b);
+        breaks[unit].push_back({ua + (ub - ua) * gv.t, gid});
+      }
     }
-    edges_.resize(part_.edges.size());
-    for (std::size_t e = 0; e < part_.edges.size(); ++e) {
-      const BrepEdge& edge = part_.edges[e];
+    edges_.resize(units_.size());
+    for (std::size_t e = 0; e < units_.size(); ++e) {
+      const Unit& un = units_[e];
       EdgeNodes& en = edges_[e];
       auto& br = breaks[e];
       std::sort(br.begin(), br.end());
       en.t.push_back(0.0);
-      en.node.push_back(vertex_node_[edge.a.index()]);
-      const Vec3 a = part_.vertices[edge.a.index()].position;
-      const Vec3 b = part_.vertices[edge.b.index()].position;
-      const double len = distance(a, b);
+      en.node.push_back(vertex_node_[un.a.index()]);
+      const double len = unit_length(e);
       const double merge = kMergeBreakRel * part_.size;
       for (const auto& [t, g] : br) {
         // A break at (or within rounding of) the previous break or the edge's end is that node.
@@ -146,22 +193,47 @@ class QuadBuilder {
           continue;
         }
         if ((1.0 - t) * len <= merge) {
-          gcut_node_[g] = vertex_node_[edge.b.index()];
+          gcut_node_[g] = vertex_node_[un.b.index()];
           continue;
         }
         en.t.push_back(t);
-        en.node.push_back(add_node(lerp3(a, b, t)));
+        en.node.push_back(add_node(unit_point(e, t)));
         gcut_node_[g] = en.node.back();
       }
       en.t.push_back(1.0);
-      en.node.push_back(vertex_node_[edge.b.index()]);
+      en.node.push_back(vertex_node_[un.b.index()]);
       for (std::size_t j = 0; j + 1 < en.t.size(); ++j) {
         const double piece = (en.t[j + 1] - en.t[j]) * len;
-        en.count.push_back(piece > (kSplitPiece + kRoundingSlack) * h_ ? edges_for(piece) : 1u);
+        std::uint32_t count =
+            piece > (kSplitPiece + kRoundingSlack) * h_ ? edges_for(piece) : 1u;
+        if (un.arc >= 0) {  // chords within the chord tolerance
+          const PartArc& arc = part_.arcs[static_cast<std::size_t>(un.arc)];
+          const double angle = (en.t[j + 1] - en.t[j]) * arc.span;
+          const double step = max_chord_angle(arc.radius, part_.chord_tol);
+          count = std::max(count, static_cast<std::uint32_t>(std::ceil(angle / step - 1e-9)));
+        }
+        en.count.push_back(count);
       }
       en.inner.resize(en.count.size());
     }
   }
+
+  /// Length of a unit: its chord, or its arc.
+  double unit_length(std::size_t u) const {
+    const Unit& un = units_[u];
+    if (un.arc < 0)
+      return distance(part_.vertices[un.a.index()].position, part_.vertices[un.b.index()].position);
+    const PartArc& arc = part_.arcs[static_cast<std::size_t>(un.arc)];
+    return arc.radius * arc.span;
+  }
+  /// The point at parameter t of a unit (from its a to its b).
+  Vec3 unit_point(std::size_t u, double t) const {
+    const Unit& un = units_[u];
+    if (un.arc < 0)
+      return lerp3(part_.vertices[un.a.index()].position, part_.vertices[un.b.index()].position, t);
+    return part_.arcs[static_cast<std::size_t>(un.arc)].at(t);
+  }
+
 
   static Vec3 lerp3(Vec3 a, Vec3 b, double t) { return a + t * (b - a); }
 
@@ -191,27 +263,43 @@ class QuadBuilder {
       const auto& poly = patch.polygon.loops[l];
       const std::size_t n = loop.vertices.size();
       std::uint32_t first = kNone, prev = kNone;
-      EdgeId prev_edge;
+      std::uint32_t prev_edge = 0;
       std::uint32_t prev_piece = 0;
       bool prev_forward = true;
-      for (std::size_t i = 0; i < n; ++i) {
+      // Start at a vertex that is not inside an arc, and take each arc's edges as one unit.
+      std::size_t start = 0;
+      while (start < n && part_.vertices[loop.vertices[start].index()].from_arc) ++start;
+      if (start == n) throw InternalError("mesher: a loop of " + part_.patch_label(pid) +
+                                          " has no vertex outside its arcs");
+      for (std::size_t step = 0; step < n;) {
+        const std::size_t i = (start + step) % n;
         const EdgeId e = loop.edges[i];
-        const EdgeNodes& en = edges_[e.index()];
-        const bool forward = loop.vertices[i] == part_.edges[e.index()].a;
+        const std::uint32_t unit = unit_of_edge_[e.index()];
+        const Unit& un = units_[unit];
+        const EdgeNodes& en = edges_[unit];
+        const bool forward = loop.vertices[i] == un.a;
+        std::size_t span = 1;  // loop edges this unit covers
+        if (un.arc >= 0) {
+          while (step + span < n && part_.edges[loop.edges[(i + span) % n].index()].arc == un.arc)
+            ++span;
+        }
         const Vec2 p0 = poly[i], p1 = poly[(i + 1) % n];
         const std::size_t pieces = en.count.size();
         for (std::size_t k = 0; k < pieces; ++k) {
-          const std::size_t j = forward ? k : pieces - 1 - k;  // piece index on the edge
+          const std::size_t j = forward ? k : pieces - 1 - k;  // piece index on the unit
           const std::size_t from = forward ? j : j + 1;         // break at the piece's start
           const double s = forward ? en.t[from] : 1.0 - en.t[from];
-          const std::uint32_t c = boundary_node(en.node[from], lerp(p0, p1, s));
+          const Vec2 at = un.arc < 0 ? lerp(p0, p1, s)
+                                     : patch.frame.to_2d(result_.mesh.nodes[en.node[from]]);
+          const std::uint32_t c = boundary_node(en.node[from], at);
           if (first == kNone) first = c;
           if (prev != kNone) add_boundary_edge(g, prev, c, prev_edge, prev_piece, prev_forward);
           prev = c;
-          prev_edge = e;
+          prev_edge = unit;
           prev_piece = static_cast<std::uint32_t>(j);
           prev_forward = forward;
         }
+        step += span;
       }
       add_boundary_edge(g, prev, first, prev_edge, prev_piece, prev_forward);
     }
@@ -262,7 +350,7 @@ class QuadBuilder {
     trace_faces(pid, g);
   }
 
-  void add_boundary_edge(PatchGraph& g, std::uint32_t a, std::uint32_t b, EdgeId e,
+  void add_boundary_edge(PatchGraph& g, std::uint32_t a, std::uint32_t b, std::uint32_t e,
                          std::uint32_t piece, bool forward) {
     CEdge c;
     c.a = a;
@@ -396,7 +484,7 @@ class QuadBuilder {
 
   std::uint32_t half_count(const PatchGraph& g, Half h) const {
     const CEdge& c = g.edges[h.edge];
-    return c.rail ? c.count : edges_[c.edge.index()].count[c.piece];
+    return c.rail ? c.count : edges_[c.edge].count[c.piece];
   }
 
   std::uint32_t face_count(const PatchGraph& g, std::size_t f) const {
@@ -418,13 +506,13 @@ class QuadBuilder {
     const std::uint32_t nf = offset.back();
     const std::uint32_t ground = nf;
     // Faces of each piece (e, j): one per patch of e.
-    std::vector<std::vector<std::vector<std::uint32_t>>> piece_faces(part_.edges.size());
-    for (std::size_t e = 0; e < part_.edges.size(); ++e)
+    std::vector<std::vector<std::vector<std::uint32_t>>> piece_faces(units_.size());
+    for (std::size_t e = 0; e < units_.size(); ++e)
       piece_faces[e].resize(edges_[e].count.size());
     for (std::size_t p = 0; p < part_.patches.size(); ++p) {
       for (const CEdge& c : patches_[p].edges) {
         if (c.rail) continue;
-        piece_faces[c.edge.index()][c.piece].push_back(offset[p] + c.face[0]);
+        piece_faces[c.edge][c.piece].push_back(offset[p] + c.face[0]);
       }
     }
     struct Link {
@@ -507,15 +595,12 @@ class QuadBuilder {
 
   // ---- 5. nodes and quads -----------------------------------------------------------------
   void materialise_pieces() {
-    for (std::size_t e = 0; e < part_.edges.size(); ++e) {
+    for (std::size_t e = 0; e < units_.size(); ++e) {
       EdgeNodes& en = edges_[e];
-      const BrepEdge& edge = part_.edges[e];
-      const Vec3 a = part_.vertices[edge.a.index()].position;
-      const Vec3 b = part_.vertices[edge.b.index()].position;
       for (std::size_t j = 0; j < en.count.size(); ++j) {
         for (std::uint32_t k = 1; k < en.count[j]; ++k) {
           const double t = en.t[j] + (en.t[j + 1] - en.t[j]) * k / en.count[j];
-          en.inner[j].push_back(add_node(lerp3(a, b, t)));
+          en.inner[j].push_back(add_node(unit_point(e, t)));
         }
       }
     }
@@ -543,12 +628,13 @@ class QuadBuilder {
     // Boundary piece nodes in the patch frame.
     for (const CEdge& c : g.edges) {
       if (c.rail) continue;
-      const EdgeNodes& en = edges_[c.edge.index()];
+      const EdgeNodes& en = edges_[c.edge];
       const auto& inner = en.inner[c.piece];
+      const bool arc = units_[c.edge].arc >= 0;
       for (std::size_t k = 0; k < inner.size(); ++k) {
         const double s = static_cast<double>(k + 1) / en.count[c.piece];
-        pos2[inner[k]] =
-            lerp(g.nodes[c.a].p, g.nodes[c.b].p, c.forward ? s : 1.0 - s);
+        pos2[inner[k]] = arc ? patch.frame.to_2d(result_.mesh.nodes[inner[k]])
+                             : lerp(g.nodes[c.a].p, g.nodes[c.b].p, c.forward ? s : 1.0 - s);
       }
     }
     for (std::size_t f = 0; f < g.faces.size(); ++f) {
@@ -594,7 +680,7 @@ class QuadBuilder {
         }
         emit(g.nodes[tail].mesh);
         const std::vector<std::uint32_t>& inner =
-            rail ? c.inner : edges_[c.edge.index()].inner[c.piece];
+            rail ? c.inner : edges_[c.edge].inner[c.piece];
         // Along the half-edge: rails are stored from a to b, pieces in the edge's direction.
         const bool backwards = rail ? h.reverse : (c.forward == h.reverse);
         for (std::size_t i = 0; i < inner.size(); ++i)
@@ -625,6 +711,14 @@ class QuadBuilder {
   const CutGraph& graph_;
   double h_;
   QuadResult result_;
+  /// A straight B-Rep edge, or an arc (all its discretisation edges): nodes are laid per unit.
+  struct Unit {
+    std::int64_t arc = -1;  ///< index into Part::arcs, or -1
+    EdgeId edge;            ///< the straight edge, or the arc's first discretisation edge
+    VertexId a, b;          ///< ends: the edge's a and b, or the arc's from and to
+  };
+  std::vector<Unit> units_;
+  std::vector<std::uint32_t> unit_of_edge_;
   std::vector<std::uint32_t> vertex_node_;
   std::vector<std::uint32_t> gcut_node_;
   std::vector<EdgeNodes> edges_;

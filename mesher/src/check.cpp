@@ -79,8 +79,8 @@ class Checker {
     out_.min_node_distance = MeshTolerances::kMinNodeDistance * size_;
     index_patches();
     check_elements();  // rules 1, 2, 3 and the element areas
+    check_edges();     // rules 5 and 6 along mesh edges (and the arcs' chords, for rule 4)
     check_areas();     // rule 4
-    check_edges();     // rules 5 and 6 along mesh edges
     check_nodes();     // rule 5 (close and hanging nodes) and rule 6 (B-Rep vertices)
     for (int r = 1; r <= 6; ++r) {
       for (MeshFailure& f : by_rule_[static_cast<std::size_t>(r)])
@@ -147,10 +147,72 @@ class Checker {
       plane_tol_.push_back(off + slack);
     }
     area_.assign(part_.patches.size(), Sum{});
+    // An arc is one B-Rep edge for the check, named by its first discretisation edge; its
+    // discretisation points are not B-Rep vertices (the mesh has its own chords of the circle).
+    arc_edge_.assign(part_.arcs.size(), kNone);
     for (std::size_t i = 0; i < part_.edges.size(); ++i) {
       const BrepEdge& e = part_.edges[i];
+      if (e.arc >= 0) {
+        std::uint32_t& first = arc_edge_[static_cast<std::size_t>(e.arc)];
+        if (first == kNone) first = static_cast<std::uint32_t>(i);
+        continue;
+      }
       edge_by_vertices_.emplace(pair_key(e.a.value, e.b.value), static_cast<std::uint32_t>(i));
     }
+    for (std::size_t a = 0; a < part_.arcs.size(); ++a) {
+      if (arc_edge_[a] == kNone) continue;
+      edge_by_vertices_.emplace(pair_key(part_.arcs[a].from.value, part_.arcs[a].to.value),
+                                arc_edge_[a]);
+    }
+    // Rule 4 compares with the patch bounded by the mesh's own chords of its arcs: the
+    // polygon's area, plus the circular segments between the discretisation chords and the
+    // circle, minus those between the mesh's chords and the circle (check_edges subtracts).
+    expected_.assign(part_.patches.size(), Sum{});
+    for (std::size_t p = 0; p < part_.patches.size(); ++p) {
+      const Patch& patch = part_.patches[p];
+      expected_[p].add(patch.area);
+      for (std::size_t l = 0; l < patch.loops.size(); ++l) {
+        const Loop& loop = patch.loops[l];
+        const auto& poly = patch.polygon.loops[l];
+        for (std::size_t i = 0; i < loop.edges.size(); ++i) {
+          const std::int64_t arc = part_.edges[loop.edges[i].index()].arc;
+          if (arc < 0) continue;
+          const PartArc& pa = part_.arcs[static_cast<std::size_t>(arc)];
+          const Vec2 a = poly[i], b = poly[(i + 1) % poly.size()];
+          // The centre on the inner side of the chord: the arc bulges out of the patch.
+          const double sign = cross(b - a, patch.frame.to_2d(pa.center) - a) > 0.0 ? 1.0 : -1.0;
+          arc_sign_[std::uint64_t{static_cast<std::uint64_t>(arc)} * part_.patches.size() + p] = sign;
+          expected_[p].add(sign * circular_segment(pa.radius, distance(a, b)));
+        }
+      }
+    }
+  }
+
+  /// Area between a chord of length c and its circle of radius r (the smaller side).
+  static double circular_segment(double r, double c) {
+    const double theta = 2.0 * std::asin(std::fmin(1.0, 0.5 * c / r));
+    return 0.5 * r * r * (theta - std::sin(theta));
+  }
+
+  /// The ends of a B-Rep edge as the check sees it: an arc's from and to.
+  std::pair<std::uint32_t, std::uint32_t> ends(std::uint32_t edge) const {
+    const BrepEdge& e = part_.edges[edge];
+    if (e.arc < 0) return {e.a.value, e.b.value};
+    const PartArc& a = part_.arcs[static_cast<std::size_t>(e.arc)];
+    return {a.from.value, a.to.value};
+  }
+
+  /// Distance from x to an arc (its circle, where the angle lies within the arc's span).
+  static double arc_distance(Vec3 x, const PartArc& a) {
+    const Vec3 w = x - a.center;
+    const double u = dot(w, a.e1), v = dot(w, a.e2);
+    const Vec3 axis = cross(a.e1, a.e2);
+    const double off = dot(w, axis);
+    double angle = std::atan2(v, u);
+    if (angle < 0.0) angle += 2.0 * kPi;
+    if (angle > a.span + 1e-9 && angle < 2.0 * kPi - 1e-9) return std::numeric_limits<double>::infinity();
+    const double radial = std::hypot(u, v) - a.radius;
+    return std::hypot(radial, off);
   }
 
   static std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
@@ -280,14 +342,16 @@ class Checker {
 
   void check_areas() {
     for (std::size_t p = 0; p < part_.patches.size(); ++p) {
-      const double want = part_.patches[p].area;
+      const double want = expected_[p].value();
       const double got = area_[p].value();
       const double rel = std::fabs(got - want) / want;
       if (!(rel <= MeshTolerances::kArea)) {
         fail(4, [&] {
           return "the elements of " + patch_label(p) + " (centred at " +
                  fmt(part_.patches[p].frame.origin) + ") cover " + fmt(got) + " " + part_.units +
-                 "^2 but the patch has area " + fmt(want) + " (relative difference " + fmt(rel) +
+                 "^2 but the patch has area " + fmt(want) +
+                 (part_.arcs.empty() ? "" : " (its arcs cut by the mesh's chords)") +
+                 " (relative difference " + fmt(rel) +
                  ", tolerance " + fmt(MeshTolerances::kArea) + ")";
         });
       }
@@ -307,12 +371,15 @@ class Checker {
     double best_vertex = r;
     double best_edge = r;
     const std::vector<BoundarySegment>& segments = indices_[p].segments();
-    // The 2D distance is at most the 3D one, so a 2D search of radius r misses nothing.
-    indices_[p].for_each_near(part_.patches[p].frame.to_2d(x), r, [&](std::uint32_t si) {
+    // The 2D distance is at most the 3D one, so a 2D search of radius r misses nothing; a point
+    // of an arc is within the chord tolerance of its discretisation.
+    const double search = r + (part_.arcs.empty() ? 0.0 : part_.chord_tol);
+    indices_[p].for_each_near(part_.patches[p].frame.to_2d(x), search, [&](std::uint32_t si) {
       const BoundarySegment& s = segments[si];
       const Vec3 a = part_.vertices[s.va.index()].position;
       const Vec3 b = part_.vertices[s.vb.index()].position;
       for (const auto& [v, y] : {std::pair{s.va, a}, std::pair{s.vb, b}}) {
+        if (part_.vertices[v.index()].from_arc) continue;
         const double d = distance(x, y);
         if (d <= best_vertex) {
           best_vertex = d;
@@ -320,10 +387,12 @@ class Checker {
         }
       }
       if (best.kind != OnBrep::kVertex) {
-        const double d = segment_distance(x, a, b).first;
+        const std::int64_t arc = part_.edges[s.edge.index()].arc;
+        const double d = arc < 0 ? segment_distance(x, a, b).first
+                                 : arc_distance(x, part_.arcs[static_cast<std::size_t>(arc)]);
         if (d <= best_edge) {
           best_edge = d;
-          best = {OnBrep::kEdge, s.edge.value};
+          best = {OnBrep::kEdge, arc < 0 ? s.edge.value : arc_edge_[static_cast<std::size_t>(arc)]};
         }
       }
     });
@@ -338,8 +407,8 @@ class Checker {
   }
 
   bool edge_has_vertex(std::uint32_t edge, std::uint32_t vertex) const {
-    const BrepEdge& e = part_.edges[edge];
-    return e.a.value == vertex || e.b.value == vertex;
+    const auto [a, b] = ends(edge);
+    return a == vertex || b == vertex;
   }
   bool edge_in_patch(std::uint32_t edge, std::size_t p) const {
     const auto& ps = part_.edges[edge].patches;
@@ -460,8 +529,16 @@ class Checker {
                  std::to_string(el) +
                  ") but does not lie on a B-Rep edge of the patch: a crack or a hanging node";
         });
-      } else if (!on_edge) {
-        on_edge = e;
+      } else {
+        const std::int64_t arc = part_.edges[*e].arc;
+        if (arc >= 0) {  // a chord of the arc: the region it cuts off is not the patch's
+          const auto it = arc_sign_.find(std::uint64_t{static_cast<std::uint64_t>(arc)} *
+                                             part_.patches.size() + p);
+          const double sign = it == arc_sign_.end() ? 1.0 : it->second;
+          expected_[p].add(-sign * circular_segment(part_.arcs[static_cast<std::size_t>(arc)].radius,
+                                                    distance(mesh_.nodes[a], mesh_.nodes[b])));
+        }
+        if (!on_edge) on_edge = e;
       }
     }
     if (!on_edge) return;
@@ -476,7 +553,7 @@ class Checker {
         for (PatchId p : edge.patches)
           users += (users.empty() ? "" : ", ") + patch_label(p.index());
         return edge_text(a, b) + " lies on B-Rep edge " + std::to_string(*on_edge) + " (vertices " +
-               std::to_string(edge.a.index()) + " and " + std::to_string(edge.b.index()) +
+               std::to_string(ends(*on_edge).first) + " and " + std::to_string(ends(*on_edge).second) +
                ", used by " + std::to_string(edge.patches.size()) +
                (edge.patches.size() == 1 ? " patch: " : " patches: ") + users +
                ") but is used by " + element_list(first, last) +
@@ -540,7 +617,7 @@ class Checker {
     for (std::size_t p = 0; p < part_.patches.size(); ++p) {
       for (const Loop& loop : part_.patches[p].loops) {
         for (VertexId v : loop.vertices) {
-          if (seen[v.index()]) continue;
+          if (seen[v.index()] || part_.vertices[v.index()].from_arc) continue;
           seen[v.index()] = true;
           const Vec3 x = part_.vertices[v.index()].position;
           bool found = false;
@@ -569,6 +646,9 @@ class Checker {
   std::vector<double> plane_tol_;
   std::vector<Sum> area_;
   std::unordered_multimap<std::uint64_t, std::uint32_t> edge_by_vertices_;
+  std::vector<std::uint32_t> arc_edge_;  ///< per arc: the B-Rep edge that stands for it
+  std::unordered_map<std::uint64_t, double> arc_sign_;  ///< (arc, patch): +1 arc bulges out
+  std::vector<Sum> expected_;  ///< per patch: the area rule 4 expects
   std::vector<std::uint8_t> skip_;           ///< malformed or non-finite: left out
   std::vector<std::uint32_t> node_element_;  ///< first element using each node, or kNone
   double mean_edge_ = 0.0;

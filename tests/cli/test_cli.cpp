@@ -144,6 +144,34 @@ TEST_CASE("check-loops reports the cube's loops as JSON, and draw writes picture
   CHECK_FALSE(fs::exists(d / "x.svg"));
 }
 
+TEST_CASE("quality rates a Gmsh mesh with nodes on the true circle of an arc as valid",
+          "[cli][quality][arcs]") {
+  // plate_with_hole: a 30 x 20 plate with a hole of radius 4 round (12, 10), four arcs. Gmsh
+  // puts its nodes on the circle and its chords differ from our discretisation: rule 4 compares
+  // with the patch cut by the mesh's own chords, rule 6 wants the nodes on the circle.
+  const fs::path d = fresh_dir("quality-arcs");
+  std::ofstream(d / "p.geo")
+      << "lc = 0.8;\n"
+         "Point(1)={0,0,0,lc}; Point(2)={30,0,0,lc}; Point(3)={30,20,0,lc}; Point(4)={0,20,0,lc};\n"
+         "Point(5)={12,6,0,lc}; Point(6)={8,10,0,lc}; Point(7)={12,14,0,lc}; Point(8)={16,10,0,lc};\n"
+         "Point(9)={12,10,0,lc};\n"
+         "Line(1)={1,2}; Line(2)={2,3}; Line(3)={3,4}; Line(4)={4,1};\n"
+         "Circle(5)={5,9,6}; Circle(6)={6,9,7}; Circle(7)={7,9,8}; Circle(8)={8,9,5};\n"
+         "Curve Loop(1)={1,2,3,4}; Curve Loop(2)={5,6,7,8}; Plane Surface(1)={1,2};\n"
+         "Mesh.Algorithm=6; Mesh.RecombineAll=1; Mesh.RecombinationAlgorithm=1;\n"
+         "Mesh.SubdivisionAlgorithm=1;\n";
+  const std::string gmsh =
+      "gmsh " + q(d / "p.geo") + " -2 -format msh41 -o " + q(d / "p.msh") + " > /dev/null 2>&1";
+  REQUIRE(std::system(gmsh.c_str()) == 0);
+  const Run r = run("quality " + q(laytracks::test::cases_dir() + "/plate_with_hole.json") + " " +
+                    q(d / "p.msh") + " --json " + q(d / "q.json"));
+  INFO(r.out << r.err);
+  CHECK(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("valid by quality.md: yes"));
+  const auto doc = nlohmann::json::parse(slurp(d / "q.json"));
+  CHECK(doc["triangles"] == 0);
+}
+
 TEST_CASE("quality rates a Gmsh mesh of a part: quads valid, triangles refused", "[cli][quality]") {
   const fs::path d = fresh_dir("quality");
   for (const bool recombine : {true, false}) {

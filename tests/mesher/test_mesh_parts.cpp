@@ -124,3 +124,26 @@ TEST_CASE("smoothing keeps the mesh valid and does not lower the worst corner be
   CHECK(b.mesh.elements.size() == a.mesh.elements.size());
   CHECK(b.quality.measures[6].worst >= std::min(a.quality.measures[6].worst, 0.2) - 1e-12);
 }
+
+TEST_CASE("nodes on arcs lie on the circle, and the check holds them to it", "[mesh][arcs]") {
+  const Part part = load_part(cases_dir() + "/plate_with_hole.json");
+  MeshPartResult r = mesh_part(part);
+  REQUIRE(r.check.valid());
+  const Vec3 centre{12.0, 10.0, 0.0};
+  std::vector<std::uint32_t> on_hole;
+  for (std::uint32_t n = 0; n < r.mesh.nodes.size(); ++n)
+    if (std::abs(distance(r.mesh.nodes[n], centre) - 4.0) < 1e-9) on_hole.push_back(n);
+  // More nodes on the hole than its discretisation has points: the mesh lays its own.
+  std::size_t arc_points = 0;
+  for (const BrepVertex& v : part.vertices) arc_points += v.from_arc ? 1 : 0;
+  CHECK(on_hole.size() > 4);
+  CHECK(on_hole.size() != arc_points + 4);
+  // One hole node moved 1e-3 off the circle, towards the centre: rule 6 (and rule 4) fail.
+  QuadMesh moved = r.mesh;
+  const std::uint32_t n = on_hole.front();
+  moved.nodes[n] = moved.nodes[n] + 1e-3 / 4.0 * (centre - moved.nodes[n]);
+  const MeshCheck bad = check_mesh(part, moved);
+  CHECK_FALSE(bad.valid());
+  CHECK(bad.counts[6] > 0);
+  CHECK(bad.counts[4] > 0);
+}

@@ -32,6 +32,26 @@ struct BrepEdge {
   std::int64_t arc = -1;
 };
 
+/// A circular arc of the file, as the B-Rep keeps it: its exact circle, and the points that
+/// discretise it (BrepVertex::from_arc), which the medial axis and the rails use. The mesh puts
+/// its own nodes on the circle (docs/mesher.md).
+struct PartArc {
+  VertexId from;  ///< the file's vertices at its ends
+  VertexId to;
+  Vec3 center;
+  double radius = 0.0;
+  Vec3 e1;            ///< unit, from the centre towards `from`
+  Vec3 e2;            ///< unit, axis x e1: the arc turns from e1 towards e2
+  double span = 0.0;  ///< angle from `from` to `to`, in (0, 2 pi)
+  std::vector<VertexId> points;  ///< interior points, from `from` to `to`, uniform in angle
+  /// The point at fraction u of the angle from `from` (u in [0, 1]).
+  Vec3 at(double u) const;
+};
+
+/// The largest angle a chord of a circle of this radius may span with its sagitta at most
+/// chord_tol (and at most 90 degrees).
+double max_chord_angle(double radius, double chord_tol);
+
 /// An orthonormal frame on a patch's plane: n is the unit normal of the outer loop as the file
 /// gives it (right-hand rule), and (u, v, n) is right-handed, so the outer loop runs
 /// counter-clockwise in (u, v).
@@ -88,6 +108,7 @@ struct Part {
   /// from their centroid. Invariant under rotation and mirroring, unlike the bbox diagonal.
   double size = 0.0;
   double chord_tol = 0;  ///< sagitta bound used to discretise arcs
+  std::vector<PartArc> arcs;  ///< the file's arcs, by index (BrepEdge::arc)
   std::size_t shell_count = 0;
   std::vector<std::string> warnings;  ///< things worth telling the user that are not errors
 

@@ -75,16 +75,21 @@ struct MeshCheck {
 ///    coordinates; the element's centroid, projected in the patch frame, is inside the patch
 ///    polygon (crossing test: a centroid exactly on the boundary may go either way); the
 ///    element turns counter-clockwise about the patch normal.
-/// 4. per patch, the signed areas of its elements in the patch frame add up to Patch::area
-///    within MeshTolerances::kArea relative.
+/// 4. per patch, the signed areas of its elements in the patch frame add up, within
+///    MeshTolerances::kArea relative, to the area of the patch with its arcs replaced by the
+///    mesh's own chords (the spec's "polygons that the mesher used"): Patch::area, plus the
+///    circular segments between the discretisation's chords and the circle, minus those
+///    between the mesh's boundary edges on arcs and the circle. Any mesher's chords will do.
 /// 5. mesh edges are grouped by their unordered node pair. A group used by one element of a
 ///    patch p is on p's boundary and must lie on a B-Rep edge E of p (both ends on E or at its
 ///    vertices); then the group must hold exactly one element of each patch of E and no
 ///    other. A group with two elements of p is inside p; more than two is a failure. No node
 ///    lies inside a mesh edge (hanging node, MeshTolerances::kHanging); no two nodes are
 ///    closer than MeshTolerances::kMinNodeDistance x size (spatial hashing, not O(n^2)).
-/// 6. every node at an end of a boundary group of patch p is on a B-Rep edge or vertex of p,
-///    and every vertex of every patch loop has a mesh node within kOnBrep x size.
+/// 6. every node at an end of a boundary group of patch p is on a B-Rep edge or vertex of p
+///    (on an arc: on its circle, within kOnBrep x size), and every vertex of every patch loop
+///    has a mesh node within kOnBrep x size. An arc is one B-Rep edge here: the points that
+///    discretise it are not vertices, and need not be nodes.
 /// Runs in O(n) expected time: about half a second for a million quads (test_mesher times it).
 MeshCheck check_mesh(const Part& part, const QuadMesh& mesh, const MeshCheckOptions& options = {});
 
