@@ -40,23 +40,16 @@ void write_rails_svg(std::ostream& out,
                      const CutGraph& graph,
                      const std::string& title) {
   const std::size_t n = part.patches.size();
-  const std::size_t cols = std::max<std::size_t>(
-      1, std::min<std::size_t>(n, static_cast<std::size_t>(std::ceil(std::sqrt(double(n))))));
-  const std::size_t rows = (n + cols - 1) / cols;
-  const double cell = n == 1 ? 640.0 : 360.0;
-  const double head = 24.0;
-  SvgDocument svg(cell * static_cast<double>(cols),
-                  (head + cell) * static_cast<double>(rows) + 30.0);
+  const PatchGrid grid(n);
+  SvgDocument svg(grid.width(), grid.height() + 30.0);
   std::vector<Panel> panels;
   for (std::size_t p = 0; p < n; ++p) {
     Box2 box;
     for (const auto& loop : part.patches[p].polygon.loops) {
       for (Vec2 q : loop) box.add(q);
     }
-    const double x0 = cell * static_cast<double>(p % cols);
-    const double y0 = (cell + head) * static_cast<double>(p / cols);
-    panels.emplace_back(box, x0, y0 + head, cell, cell, 16.0);
-    svg.text({x0 + 8, y0 + 18}, part.patches[p].name, 14.0);
+    panels.push_back(grid.panel(p, box));
+    svg.text(grid.title_at(p), part.patches[p].name, 14.0);
     for (const auto& loop : part.patches[p].polygon.loops) {
       std::vector<Vec2> pts;
       for (Vec2 q : loop) pts.push_back(panels[p].map(q));
@@ -92,7 +85,7 @@ void write_rails_svg(std::ostream& out,
     svg.polyline({panel.map(c.position), panel.map(graph.macuts[s.ma.index()].point.position)},
                  source ? "#d62728" : "#1f5fbf", source ? 1.4 : 0.8);
   }
-  const double ly = (cell + head) * static_cast<double>(rows) + 20.0;
+  const double ly = grid.height() + 20.0;
   svg.text({10.0, ly}, title + ": source rails red, track rails blue, medial axis grey", 12.0);
   out << svg.str();
 }

@@ -105,13 +105,8 @@ void write_unfolded(std::ostream& out,
                     const QuadMesh& mesh,
                     const std::vector<double>& jacobian) {
   const std::size_t n = part.patches.size();
-  const std::size_t cols = std::max<std::size_t>(
-      1, std::min<std::size_t>(n, static_cast<std::size_t>(std::ceil(std::sqrt(double(n))))));
-  const std::size_t rows = (n + cols - 1) / cols;
-  const double cell = n == 1 ? 640.0 : 360.0;
-  const double head = 24.0;
-  SvgDocument svg(cell * static_cast<double>(cols),
-                  (head + cell) * static_cast<double>(rows) + kLegendHeight);
+  const PatchGrid grid(n);
+  SvgDocument svg(grid.width(), grid.height() + kLegendHeight);
   std::vector<Panel> panels;
   std::vector<std::size_t> count(n, 0);
   for (const MeshElement& el : mesh.elements) ++count[el.patch.index()];
@@ -121,10 +116,8 @@ void write_unfolded(std::ostream& out,
     for (const auto& loop : part.patches[p].polygon.loops) {
       for (Vec2 q : loop) box.add(q);
     }
-    const double x0 = cell * static_cast<double>(p % cols);
-    const double y0 = (cell + head) * static_cast<double>(p / cols);
-    panels.emplace_back(box, x0, y0 + head, cell, cell, 16.0);
-    svg.text({x0 + 8, y0 + 18},
+    panels.push_back(grid.panel(p, box));
+    svg.text(grid.title_at(p),
              part.patches[p].name + "  (" + std::to_string(count[p]) + " elements)", 14.0);
     outline[p] = outline_width(part.patches[p], count[p], panels[p].scale());
   }
@@ -143,7 +136,7 @@ void write_unfolded(std::ostream& out,
       svg.polyline(closed_run(std::move(pts)), "#000", 1.8);
     }
   }
-  legend(svg, (head + cell) * static_cast<double>(rows) + 8.0, mesh, jacobian, "unfolded");
+  legend(svg, grid.height() + 8.0, mesh, jacobian, "unfolded");
   out << svg.str();
 }
 

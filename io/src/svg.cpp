@@ -112,4 +112,23 @@ std::string xml_escape(const std::string& s) {
   return out;
 }
 
+PatchGrid::PatchGrid(std::size_t patches) {
+  const std::size_t n = std::max<std::size_t>(1, patches);
+  cols = std::min<std::size_t>(n, static_cast<std::size_t>(std::ceil(std::sqrt(double(n)))));
+  cols = std::max<std::size_t>(1, cols);
+  rows = (n + cols - 1) / cols;
+  cell = n == 1 ? 640.0 : 360.0;
+}
+
+Panel PatchGrid::panel(std::size_t p, Box2 box) const {
+  const double x0 = cell * static_cast<double>(p % cols);
+  const double y0 = (cell + head) * static_cast<double>(p / cols);
+  return Panel(box, x0, y0 + head, cell, cell, 16.0);
+}
+
+Vec2 PatchGrid::title_at(std::size_t p) const {
+  return {cell * static_cast<double>(p % cols) + 8.0,
+          (cell + head) * static_cast<double>(p / cols) + 18.0};
+}
+
 }  // namespace laytracks

@@ -55,6 +55,21 @@ class SvgDocument {
   std::string body_;
 };
 
+/// The unfolded view of a part: one square panel per patch, in a grid of ceil(sqrt(n))
+/// columns, each under a title line.
+struct PatchGrid {
+  std::size_t cols = 1;
+  std::size_t rows = 1;
+  double cell = 640.0;  ///< panel side, pixels
+  double head = 24.0;   ///< title line above each panel
+  explicit PatchGrid(std::size_t patches);
+  double width() const { return cell * static_cast<double>(cols); }
+  double height() const { return (head + cell) * static_cast<double>(rows); }
+  /// The panel of patch p (fitting the box of its polygon) and where its title goes.
+  Panel panel(std::size_t p, Box2 box) const;
+  Vec2 title_at(std::size_t p) const;
+};
+
 /// A colour for t in [0, 1]: dark blue (0) through green to yellow (1), like viridis.
 std::string ramp_colour(double t);
 /// Escapes &, <, > and quotes for text and attributes.
