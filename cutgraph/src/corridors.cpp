@@ -234,6 +234,47 @@ std::vector<CorridorPiece> corridor_pieces_impl(const Part& part,
   return c.segs;
 }
 
+namespace {
+
+/// Seeds at equal arc length along CUT-SEG cs, cutting it into `tracks` pieces.
+void seeds_along(const Part& part, const CutSeg& cs, double tracks, std::vector<TrackSeed>& seeds) {
+  const auto& poly = part.patches[cs.patch.index()].polygon.loops[cs.loop];
+  for (int k = 1; k < static_cast<int>(tracks); ++k) {
+    // Walk the boundary to the arc length k L / n.
+    const double target = cs.length * k / tracks;
+    double u = cs.u0;
+    double walked = 0.0;
+    while (true) {
+      const double next = std::min(cs.u1, std::floor(u) + 1.0);
+      const std::size_t i = static_cast<std::size_t>(std::floor(u)) % poly.size();
+      const double seg_len = distance(poly[i], poly[(i + 1) % poly.size()]);
+      const double piece = (next - u) * seg_len;
+      if (walked + piece >= target || next >= cs.u1) {
+        u += seg_len > 0.0 ? (target - walked) / seg_len : 0.0;
+        break;
+      }
+      walked += piece;
+      u = next;
+    }
+    TrackSeed seed;
+    seed.patch = cs.patch;
+    std::uint32_t seg;
+    double s;
+    seed.point.position = point_at(poly, u, &seg, &s);
+    seed.point.site = {BoundarySite::Kind::Segment, cs.loop, seg};
+    seed.point.s = s;
+    seeds.push_back(seed);
+  }
+}
+
+/// Eq. (1), ceil(L / w - 0.5): halves round down. The small margin keeps a length of exactly
+/// k + 1/2 widths from rounding differently when the part is turned.
+double track_count(double length, double width) {
+  return std::max(1.0, std::ceil(length / width - 0.5 - kHalfMargin));
+}
+
+}  // namespace
+
 std::vector<TrackSeed> track_seeds(const Part& part,
                                    const std::vector<MedialAxis>& axes,
                                    const CutGraph& graph,
@@ -251,36 +292,20 @@ std::vector<TrackSeed> track_seeds(const Part& part,
   for (std::size_t m : master) {
     if (m == SIZE_MAX) continue;
     const CutSeg& cs = corridors.segs[m];
-    // Eq. (1), ceil(L / w - 0.5): halves round down. The small margin keeps a length of
-    // exactly k + 1/2 widths from rounding differently when the part is turned.
-    const double tracks = std::max(1.0, std::ceil(cs.length / width - 0.5 - kHalfMargin));
-    const auto& poly = part.patches[cs.patch.index()].polygon.loops[cs.loop];
-    for (int k = 1; k < static_cast<int>(tracks); ++k) {
-      // Walk the boundary to the arc length k L / n.
-      const double target = cs.length * k / tracks;
-      double u = cs.u0;
-      double walked = 0.0;
-      while (true) {
-        const double next = std::min(cs.u1, std::floor(u) + 1.0);
-        const std::size_t i = static_cast<std::size_t>(std::floor(u)) % poly.size();
-        const double seg_len = distance(poly[i], poly[(i + 1) % poly.size()]);
-        const double piece = (next - u) * seg_len;
-        if (walked + piece >= target || next >= cs.u1) {
-          u += seg_len > 0.0 ? (target - walked) / seg_len : 0.0;
-          break;
-        }
-        walked += piece;
-        u = next;
-      }
-      TrackSeed seed;
-      seed.patch = cs.patch;
-      std::uint32_t seg;
-      double s;
-      seed.point.position = point_at(poly, u, &seg, &s);
-      seed.point.site = {BoundarySite::Kind::Segment, cs.loop, seg};
-      seed.point.s = s;
-      seeds.push_back(seed);
-    }
+    seeds_along(part, cs, track_count(cs.length, width), seeds);
+  }
+  return seeds;
+}
+
+std::vector<TrackSeed> gap_seeds(const Part& part,
+                                 const std::vector<MedialAxis>& axes,
+                                 const CutGraph& graph,
+                                 double width) {
+  const Corridors corridors = find_corridors(part, axes, graph);
+  std::vector<TrackSeed> seeds;
+  for (const CutSeg& cs : corridors.segs) {
+    if (cs.length > kGapWidths * width * (1.0 + kHalfMargin))
+      seeds_along(part, cs, track_count(cs.length, width), seeds);
   }
   return seeds;
 }

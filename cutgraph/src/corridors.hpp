@@ -38,4 +38,15 @@ std::vector<TrackSeed> track_seeds(const Part& part,
                                    const CutGraph& graph,
                                    double width);
 
+/// A CUT-SEG longer than this many widths once the corridors' tracks are laid is a gap: a
+/// side that the longest CUT-SEG's rails do not reach (a corridor whose other side is a
+/// concave corner's fan, or one that spans several CUT-SEGs).
+constexpr double kGapWidths = 2.0;
+
+/// Seeds that cut every gap (CUT-SEG longer than kGapWidths x w) into Eq. (1)'s tracks.
+std::vector<TrackSeed> gap_seeds(const Part& part,
+                                 const std::vector<MedialAxis>& axes,
+                                 const CutGraph& graph,
+                                 double width);
+
 }  // namespace laytracks::cutgraph_detail

@@ -166,6 +166,12 @@ CutGraph build_cut_graph(const Part& part,
     for (const auto& seed : cutgraph_detail::track_seeds(part, axes, graph, options.track_width)) {
       layer.lay_from(seed.patch, seed.point);
     }
+    // Sides the longest CUT-SEG's rails did not reach get tracks of their own (docs/cutgraph.md).
+    for (int round = 0; round < 3; ++round) {
+      const auto gaps = cutgraph_detail::gap_seeds(part, axes, graph, options.track_width);
+      if (gaps.empty()) break;
+      for (const auto& seed : gaps) layer.lay_from(seed.patch, seed.point);
+    }
   }
   graph.track_count = count();
   cutgraph_detail::extract_chains(part, cutgraph_detail::BoundaryIndex(part), layer, graph);
