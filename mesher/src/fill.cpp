@@ -519,6 +519,36 @@ double ccw_angle(Vec2 from, Vec2 to) {
   return a;
 }
 
+/// A polygon read by its corners: when exactly four nodes turn by more than 30 degrees
+/// (interior angle below kCornerAngle) and none is reflex, its four sides as a strip
+/// (cap1 from the first corner, then rail1, cap2, rail2), `rotate` sides later.
+constexpr double kCornerAngle = 150.0 * kPi / 180.0;
+
+std::optional<Strip> corner_strip(const std::vector<Vec2>& poly, std::size_t rotate) {
+  const auto n = static_cast<std::uint32_t>(poly.size());
+  std::vector<std::uint32_t> corners;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const double a = interior_angle(poly, k);
+    if (a > 200.0 * kPi / 180.0) return std::nullopt;
+    if (a < kCornerAngle) corners.push_back(k);
+  }
+  if (corners.size() != 4) return std::nullopt;
+  std::array<std::vector<std::uint32_t>, 4> side;
+  for (std::size_t c = 0; c < 4; ++c) {
+    const std::uint32_t from = corners[(c + rotate) % 4], to = corners[(c + rotate + 1) % 4];
+    for (std::uint32_t k = from;; k = (k + 1) % n) {
+      side[c].push_back(k);
+      if (k == to) break;
+    }
+  }
+  Strip st;
+  st.cap1 = side[0];
+  st.rail1 = side[1];
+  st.cap2 = side[2];
+  st.rail2 = side[3];
+  return st;
+}
+
 /// One chord of the cut template: from node i to node j of the polygon through `inner` new
 /// nodes, and its score (higher is better).
 struct Chord {
@@ -641,6 +671,19 @@ bool cut_down(Builder& m, const std::vector<std::uint32_t>& ids, int& budget) {
   if (n < 6 || --budget < 0) return false;
   std::vector<Vec2> poly;
   for (std::uint32_t id : ids) poly.push_back(m.pos(id));
+  // A piece with four corners and matching sides is a structured grid: done.
+  for (std::size_t rotate = 0; rotate < 2; ++rotate) {
+    const std::optional<Strip> st = corner_strip(poly, rotate);
+    if (!st) break;
+    FaceInput piece;
+    piece.cycle = poly;
+    const std::optional<FaceMesh> g = fill_grid(piece, *st);
+    if (!g || g->min_jacobian < kAcceptJacobian) continue;
+    std::vector<std::uint32_t> map(ids);
+    for (const Vec2& p : g->interior) map.push_back(m.add(p));
+    for (const auto& q : g->quads) m.quad(map[q[0]], map[q[1]], map[q[2]], map[q[3]]);
+    return true;
+  }
   for (const Chord& c : best_chords(poly, kCutChoices)) {
     const std::size_t interior = m.out.interior.size(), quads = m.out.quads.size();
     std::vector<std::uint32_t> chord;  // from i to j, ends excluded
@@ -900,7 +943,7 @@ std::optional<FaceMesh> fill_strip(const FaceInput& face, const Strip& st, int d
 }
 
 /// Faces with more nodes than this try the split, cut and pairs templates (O(n^3)) only when
-/// the structured templates gave no valid quads.
+/// the structured templates gave nothing with a worst corner of kSmoothFloor or more.
 constexpr std::size_t kLargeFace = 48;
 
 /// Templates' worst corners are compared in steps of this; any valid one beats every invalid.
@@ -937,8 +980,14 @@ std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
     if (consider(fill_rows(face, st, depth))) return best;
   for (const Strip& st : strips)
     if (consider(fill_strip(face, st, depth))) return best;
+  // Read by its corners instead of its sides (a face whose rails bend, or a remainder).
+  for (std::size_t rotate = 0; rotate < 2; ++rotate) {
+    const std::optional<Strip> st = corner_strip(face.cycle, rotate);
+    if (!st) break;
+    if (consider(fill_grid(face, *st))) return best;
+  }
   // The O(n^3) templates only for small faces, or when nothing structured gave valid quads.
-  const bool costly_ok = n <= kLargeFace || !best || best->min_jacobian <= kMinValidJacobian;
+  const bool costly_ok = n <= kLargeFace || !best || best->min_jacobian < kSmoothFloor;
   if (n >= 6 && costly_ok) {
     if (consider(fill_split(face, 0))) return best;
     if (consider(fill_split(face, 1))) return best;
