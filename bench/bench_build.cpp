@@ -12,8 +12,6 @@
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 /// Maps plane coordinates onto a tilted plane far from the origin.
 laytracks::Vec3 place(double x, double y) {
   const laytracks::Vec3 o{1000.0, -2000.0, 500.0};
@@ -28,7 +26,7 @@ std::vector<std::int64_t> add_loop(
     laytracks::RawPart& raw, std::size_t n, double cx, double cy, Radius radius, bool clockwise) {
   std::vector<std::int64_t> loop;
   for (std::size_t i = 0; i < n; ++i) {
-    const double t = 2.0 * kPi * static_cast<double>(i) / static_cast<double>(n);
+    const double t = 2.0 * laytracks::kPi * static_cast<double>(i) / static_cast<double>(n);
     const double a = clockwise ? -t : t;
     const double r = radius(a);
     loop.push_back(static_cast<std::int64_t>(raw.vertices.size()));
@@ -49,7 +47,7 @@ laytracks::RawPart make_part(std::size_t outer, std::size_t holes, std::size_t h
       },
       false));
   for (std::size_t h = 0; h < holes; ++h) {
-    const double a = 2.0 * kPi * static_cast<double>(h) / static_cast<double>(holes);
+    const double a = 2.0 * laytracks::kPi * static_cast<double>(h) / static_cast<double>(holes);
     patch.loops.push_back(add_loop(
         raw, hole_edges, 35.0 * std::cos(a), 35.0 * std::sin(a),
         [](double t) { return 10.0 + 2.0 * std::sin(7.0 * t); }, true));

@@ -85,11 +85,9 @@ struct PatchGraph {
 
 class QuadBuilder {
  public:
-  QuadBuilder(const Part& part,
-              const std::vector<MedialAxis>& axes,
-              const CutGraph& graph,
+  QuadBuilder(const Part& part, const CutGraph& graph,
               const QuadOptions& options)
-      : part_(part), axes_(axes), graph_(graph), h_(options.size) {
+      : part_(part), graph_(graph), h_(options.size) {
     if (!(h_ > 0.0)) throw InternalError("mesher: the element size must be positive");
   }
 
@@ -138,7 +136,6 @@ class QuadBuilder {
       const double n = static_cast<double>(arc.points.size() + 1);
       for (std::size_t k = 0; k < arc.points.size(); ++k)
         arc_point[arc.points[k].value] = {unit_of_arc[a], static_cast<double>(k + 1) / n};
-      arc_point[arc.from.value].second = 0.0;  // placeholders, never looked up as arc points
     }
     auto arc_u = [&](const PartArc& arc, VertexId v) {
       if (v == arc.from) return 0.0;
@@ -707,7 +704,6 @@ class QuadBuilder {
   }
 
   const Part& part_;
-  const std::vector<MedialAxis>& axes_;
   const CutGraph& graph_;
   double h_;
   QuadResult result_;
@@ -727,11 +723,8 @@ class QuadBuilder {
 
 }  // namespace
 
-QuadResult build_quads(const Part& part,
-                       const std::vector<MedialAxis>& axes,
-                       const CutGraph& graph,
-                       const QuadOptions& options) {
-  return QuadBuilder(part, axes, graph, options).run();
+QuadResult build_quads(const Part& part, const CutGraph& graph, const QuadOptions& options) {
+  return QuadBuilder(part, graph, options).run();
 }
 
 void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations) {

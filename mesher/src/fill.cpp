@@ -55,6 +55,15 @@ namespace {
 using Quad = std::array<std::uint32_t, 4>;
 constexpr std::uint32_t kNoId = 0xffffffffu;
 
+/// Smallest corner scaled Jacobian of a quad set, nodes placed by pos(id).
+template <class Pos>
+double worst_jacobian(const std::vector<Quad>& quads, Pos pos) {
+  double worst = std::numeric_limits<double>::infinity();
+  for (const Quad& q : quads)
+    worst = std::min(worst, min_scaled_jacobian(pos(q[0]), pos(q[1]), pos(q[2]), pos(q[3])));
+  return worst;
+}
+
 /// A face being meshed: its cycle, interior nodes appended, quads.
 struct Builder {
   const FaceInput& face;
@@ -82,11 +91,7 @@ struct Builder {
     else quad(a, d, c, b);
   }
   FaceMesh finish() {
-    out.min_jacobian = std::numeric_limits<double>::infinity();
-    for (const Quad& q : out.quads) {
-      out.min_jacobian =
-          std::min(out.min_jacobian, min_scaled_jacobian(pos(q[0]), pos(q[1]), pos(q[2]), pos(q[3])));
-    }
+    out.min_jacobian = worst_jacobian(out.quads, [&](std::uint32_t i) { return pos(i); });
     return std::move(out);
   }
 };
@@ -102,11 +107,7 @@ void relax(FaceMesh& m, const FaceInput& face, int iterations) {
   untangle_nodes(pos, fixed, m.quads, iterations);
   std::copy(pos.begin() + static_cast<std::ptrdiff_t>(face.cycle.size()), pos.end(),
             m.interior.begin());
-  m.min_jacobian = std::numeric_limits<double>::infinity();
-  for (const Quad& q : m.quads) {
-    m.min_jacobian =
-        std::min(m.min_jacobian, min_scaled_jacobian(pos[q[0]], pos[q[1]], pos[q[2]], pos[q[3]]));
-  }
+  m.min_jacobian = worst_jacobian(m.quads, [&](std::uint32_t i) { return pos[i]; });
 }
 
 /// A face seen as a strip: cap1 (boundary), rail1, cap2 (boundary, possibly a single node),
@@ -549,6 +550,17 @@ std::optional<Strip> corner_strip(const std::vector<Vec2>& poly, std::size_t rot
   return st;
 }
 
+/// The grids of a face read by its corners (corner_strip), in both readings that apply.
+std::vector<FaceMesh> corner_grids(const FaceInput& face) {
+  std::vector<FaceMesh> out;
+  for (std::size_t rotate = 0; rotate < 2; ++rotate) {
+    const std::optional<Strip> st = corner_strip(face.cycle, rotate);
+    if (!st) break;
+    if (std::optional<FaceMesh> g = fill_grid(face, *st)) out.push_back(std::move(*g));
+  }
+  return out;
+}
+
 /// One chord of the cut template: from node i to node j of the polygon through `inner` new
 /// nodes, and its score (higher is better).
 struct Chord {
@@ -672,16 +684,13 @@ bool cut_down(Builder& m, const std::vector<std::uint32_t>& ids, int& budget) {
   std::vector<Vec2> poly;
   for (std::uint32_t id : ids) poly.push_back(m.pos(id));
   // A piece with four corners and matching sides is a structured grid: done.
-  for (std::size_t rotate = 0; rotate < 2; ++rotate) {
-    const std::optional<Strip> st = corner_strip(poly, rotate);
-    if (!st) break;
-    FaceInput piece;
-    piece.cycle = poly;
-    const std::optional<FaceMesh> g = fill_grid(piece, *st);
-    if (!g || g->min_jacobian < kAcceptJacobian) continue;
+  FaceInput piece;
+  piece.cycle = poly;
+  for (const FaceMesh& g : corner_grids(piece)) {
+    if (g.min_jacobian < kAcceptJacobian) continue;
     std::vector<std::uint32_t> map(ids);
-    for (const Vec2& p : g->interior) map.push_back(m.add(p));
-    for (const auto& q : g->quads) m.quad(map[q[0]], map[q[1]], map[q[2]], map[q[3]]);
+    for (const Vec2& p : g.interior) map.push_back(m.add(p));
+    for (const auto& q : g.quads) m.quad(map[q[0]], map[q[1]], map[q[2]], map[q[3]]);
     return true;
   }
   for (const Chord& c : best_chords(poly, kCutChoices)) {
@@ -983,11 +992,8 @@ std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
   for (const Strip& st : strips)
     if (consider(fill_strip(face, st, depth))) return best;
   // Read by its corners instead of its sides (a face whose rails bend, or a remainder).
-  for (std::size_t rotate = 0; rotate < 2; ++rotate) {
-    const std::optional<Strip> st = corner_strip(face.cycle, rotate);
-    if (!st) break;
-    if (consider(fill_grid(face, *st))) return best;
-  }
+  for (FaceMesh& g : corner_grids(face))
+    if (consider(std::move(g))) return best;
   // The O(n^3) templates only for small faces, or when nothing structured gave valid quads.
   const bool costly_ok = n <= kLargeFace || !best || best->min_jacobian < kLargeFaceFloor;
   if (n >= 6 && costly_ok) {

@@ -51,7 +51,7 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
   stage("quads");
   QuadOptions qo;
   qo.size = r.size;
-  QuadResult quads = build_quads(part, axes, graph, qo);
+  QuadResult quads = build_quads(part, graph, qo);
   r.mesh = std::move(quads.mesh);
   r.stats = quads.stats;
   r.times.quads = clock.lap();

@@ -9,7 +9,6 @@
 
 #include "laytracks/brep/part.hpp"
 #include "laytracks/cutgraph/cut_graph.hpp"
-#include "laytracks/medial/medial_axis.hpp"
 #include "laytracks/mesher/quad_mesh.hpp"
 
 namespace laytracks {
@@ -39,16 +38,14 @@ struct QuadResult {
   QuadStats stats;
 };
 
-/// Builds the all-quad mesh of the part from its medial axes and cut graph. Every node on a
-/// B-Rep edge is shared by all the patches of that edge. Throws InternalError when a face cannot
-/// be meshed or the parity cannot be made even; the mesh is not checked here (check_mesh is).
-QuadResult build_quads(const Part& part,
-                       const std::vector<MedialAxis>& axes,
-                       const CutGraph& graph,
-                       const QuadOptions& options);
+/// Builds the all-quad mesh of the part from its cut graph (whose MA-CUT-VERTs carry the axis
+/// points the quads need). Every node on a B-Rep edge is shared by all the patches of that
+/// edge. Throws InternalError when a face cannot be meshed or the parity cannot be made even;
+/// the mesh is not checked here (check_mesh is).
+QuadResult build_quads(const Part& part, const CutGraph& graph, const QuadOptions& options);
 
 /// Smooths the interior nodes of every patch (`iterations` Laplacian sweeps in the patch
-/// frame). Nodes on B-Rep edges never move; a move is kept only when no quad around the node
+/// frame, then as many untangling sweeps over nodes of quads below 0.3). Nodes on B-Rep edges never move; a move is kept only when no quad around the node
 /// falls below min(its scaled Jacobian before, 0.2), so no element is ever inverted.
 void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations);
 
