@@ -1,5 +1,5 @@
-// laytracks batch INPUTS... -o OUTDIR [--format F] [-j N] [--size W] [--smooth N]
-//                 [--chord-tol T] [--quiet]
+// laytracks batch INPUTS... -o OUTDIR [--format F] [-j N] [--size W | --adaptive ...]
+//                 [--smooth N] [--chord-tol T] [--quiet]
 #include <unistd.h>
 
 #include <algorithm>
@@ -26,7 +26,8 @@ namespace laytracks::cli {
 
 const char* const kBatchHelp =
     "usage: laytracks batch INPUTS... -o OUTDIR [--format msh|vtu|bdf|inp|obj|off] [-j N]\n"
-    "                       [--size W] [--smooth N] [--chord-tol T] [--quiet]\n"
+    "                       [--size W | --adaptive [--dtheta DEG] [--min-size S]\n"
+    "                       [--max-size S]] [--smooth N] [--chord-tol T] [--quiet]\n"
     "\n"
     "Meshes many parts in parallel, each exactly as `laytracks mesh` does (checked by\n"
     "quality.md before it is written), and writes OUTDIR/<name>.<format> for every part that\n"
@@ -57,10 +58,8 @@ const char* const kBatchHelp =
     "  -o OUTDIR        the output folder, made if missing\n"
     "  --format F       msh (default), vtu, bdf, inp, obj or off\n"
     "  -j N             parts meshed at once (default: the number of hardware threads)\n"
-    "  --size W         element size for every part (default: each part's mesh.size, else 1/40\n"
-    "                   of its size)\n"
-    "  --smooth N       Laplacian then untangling sweeps over interior nodes (default 10)\n"
-    "  --chord-tol T    sagitta bound for arcs (default 1e-3 x each part's size)\n"
+    "The meshing options apply to every part, as in `laytracks mesh`:\n"
+    LAYTRACKS_MESHING_OPTIONS_HELP
     "  --quiet          no progress on stderr (the table is still printed)\n"
     "\n"
     "exit status: 0 every part meshed and written; 3 some part failed in the mesher (a face no\n"
@@ -81,7 +80,9 @@ struct Job {
 struct Row {
   Status status = kOk;  ///< kOk, kInputRefused, kInternal or kIo
   std::string error;
-  double size = 0.0;
+  double size = 0.0;  ///< uniform: the element size; adaptive: MIN_END_WIDTH
+  bool adaptive = false;
+  double neighbour_ratio = 1.0;  ///< the worst size ratio of two neighbouring quads
   std::size_t quads = 0;
   std::size_t nodes = 0;
   double min_jacobian = 0.0;
@@ -251,6 +252,8 @@ Row run_job(const Job& job, const MeshingOptions& options, const fs::path& out) 
     const Part part = read_part(job.input.string(), options.build);
     const MeshPartResult r = mesh_part(part, options.mesh);
     row.size = r.size;
+    row.adaptive = r.adaptive;
+    row.neighbour_ratio = r.quality.worst_neighbour_ratio;
     row.quads = r.quality.quads;
     row.nodes = r.quality.nodes;
     const auto& m = r.quality.measures;
@@ -397,6 +400,9 @@ void write_report(const fs::path& path,
   nlohmann::ordered_json doc;
   doc["format"] = format;
   doc["size"] = options.mesh.size ? nlohmann::ordered_json(*options.mesh.size) : nullptr;
+  doc["adaptive"] = options.mesh.adaptive.value_or(false);
+  doc["dtheta_deg"] =
+      options.mesh.dtheta_deg ? nlohmann::ordered_json(*options.mesh.dtheta_deg) : nullptr;
   doc["smooth"] = options.mesh.smooth;
   doc["chord_tol"] =
       options.build.chord_tol ? nlohmann::ordered_json(*options.build.chord_tol) : nullptr;
@@ -414,13 +420,15 @@ void write_report(const fs::path& path,
       quads += r.quads;
       nodes += r.nodes;
       p["output"] = outputs[i].string();
-      p["size"] = r.size;
+      p["mode"] = r.adaptive ? "adaptive" : "uniform";
+      p[r.adaptive ? "min_end_width" : "size"] = r.size;
       p["quads"] = r.quads;
       p["nodes"] = r.nodes;
       p["min_scaled_jacobian"] = r.min_jacobian;
       p["skew_bad_percent"] = r.skew_bad;
       p["aspect_bad_percent"] = r.aspect_bad;
       p["taper_bad_percent"] = r.taper_bad;
+      p["worst_neighbour_size_ratio"] = r.neighbour_ratio;
       p["error"] = nullptr;
     } else {
       (r.status == kInputRefused ? refused : failed) += 1;
@@ -450,7 +458,11 @@ int run_batch(const std::vector<std::string>& argv_in) {
       argv.push_back(a);
     }
   }
-  const Args args(argv, {"-o", "--format", "-j", "--size", "--smooth", "--chord-tol"}, {"--quiet"});
+  std::set<std::string> with_value = meshing_value_options();
+  with_value.insert({"-o", "--format", "-j"});
+  std::set<std::string> flags = meshing_flags();
+  flags.insert("--quiet");
+  const Args args(argv, with_value, flags);
   if (args.positional().empty()) throw UsageError("batch needs at least one input");
   const auto outdir_arg = args.value("-o");
   if (!outdir_arg) throw UsageError("batch needs -o OUTDIR");

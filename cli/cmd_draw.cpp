@@ -1,6 +1,8 @@
-// laytracks draw PART.json --stage medial|corridors|tracks|mesh -o OUT.svg [--size W]
-//                [--smooth N] [--view unfolded|oblique] [--chord-tol T]
+// laytracks draw PART.json --stage medial|corridors|tracks|mesh -o OUT.svg [meshing options]
+//                [--view unfolded|oblique]
 #include <iostream>
+#include <memory>
+#include <set>
 
 #include "args.hpp"
 #include "commands.hpp"
@@ -16,30 +18,31 @@
 namespace laytracks::cli {
 
 const char* const kDrawHelp =
-    "usage: laytracks draw PART.json --stage medial|corridors|tracks|mesh -o OUT.svg [--size W]\n"
-    "                      [--smooth N] [--view unfolded|oblique] [--chord-tol T]\n"
+    "usage: laytracks draw PART.json --stage medial|corridors|tracks|mesh -o OUT.svg\n"
+    "                      [--size W | --adaptive ...] [--smooth N] [--view unfolded|oblique]\n"
+    "                      [--chord-tol T]\n"
     "\n"
     "Draws a stage as SVG: one panel per patch in its own plane (unfolded), or, for corridors,\n"
     "tracks and mesh, the whole part in an oblique view (the default for parts of several\n"
     "patches):\n"
     "  medial     the boundary and the medial axis coloured by radius, branch points in red\n"
     "  corridors  the source rails (red) and the corridors between them, shaded\n"
-    "  tracks     the track rails (blue) laid at width W and the tracks, shaded\n"
+    "  tracks     the track rails (blue) laid at width W (or adaptively) and the tracks,\n"
+    "             shaded\n"
     "  mesh       the quads of `laytracks mesh` (checked by quality.md first), outlined and\n"
     "             filled by their scaled Jacobian (colour bar below: dark blue 0, yellow 1,\n"
     "             the 'bad' threshold 0.2 and the smallest value marked), patch boundaries bold.\n"
     "             A part the mesher refuses gets its message and exit status 3, as with\n"
     "             mesh, and nothing is written.\n"
     "\n"
-    "  --size W       track width and element size (default: the part's mesh.size, else 1/40\n"
-    "                 of the part's size, twice the largest distance of a vertex from their\n"
-    "                 centroid)\n"
-    "  --smooth N     mesh: Laplacian then untangling sweeps (default 10)\n"
-    "  --view V       unfolded or oblique\n"
-    "  --chord-tol T  sagitta bound for arcs\n";
+    "  --view V         unfolded or oblique\n"
+    "The meshing options, as in `laytracks mesh` (tracks and mesh):\n"
+    LAYTRACKS_MESHING_OPTIONS_HELP;
 
 int run_draw(const std::vector<std::string>& argv) {
-  const Args args(argv, {"--stage", "-o", "--size", "--smooth", "--chord-tol", "--view"}, {});
+  std::set<std::string> with_value = meshing_value_options();
+  with_value.insert({"--stage", "-o", "--view"});
+  const Args args(argv, with_value, meshing_flags());
   if (args.positional().size() != 1) throw UsageError("draw needs exactly one PART.json");
   const auto out = args.value("-o");
   if (!out) throw UsageError("draw needs -o OUT.svg");
@@ -71,11 +74,9 @@ int run_draw(const std::vector<std::string>& argv) {
     write_file_atomically(*out, [&](std::ostream& o) { write_medial_svg(o, part, axes); });
     return kOk;
   }
+  std::unique_ptr<TrackWidthLaw> law;
   CutGraphOptions cg;
-  if (stage == "tracks") {
-    cg.track_width =
-        options.mesh.size.value_or(part.mesh.size.value_or(default_element_size(part)));
-  }
+  if (stage == "tracks") cg = cut_graph_options(part, axes, options.mesh, law);
   const CutGraph graph = build_cut_graph(part, axes, cg);
   write_file_atomically(*out, [&](std::ostream& o) {
     if (view == "oblique") {

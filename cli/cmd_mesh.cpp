@@ -1,5 +1,6 @@
-// laytracks mesh PART.json -o OUT.ext [--size W] [--smooth N] [--report R.json] [--chord-tol T]
-//                [--quiet] [--debug-dump DIR]
+// laytracks mesh PART.json -o OUT.ext [--size W | --adaptive [--dtheta DEG] [--min-size S]
+//                [--max-size S]] [--smooth N] [--report R.json] [--chord-tol T] [--quiet]
+//                [--debug-dump DIR]
 #include <cctype>
 #include <chrono>
 #include <cstdio>
@@ -7,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "args.hpp"
@@ -19,22 +21,20 @@
 namespace laytracks::cli {
 
 const char* const kMeshHelp =
-    "usage: laytracks mesh PART.json -o OUT.ext [--size W] [--smooth N] [--report R.json]\n"
+    "usage: laytracks mesh PART.json -o OUT.ext [--size W | --adaptive [--dtheta DEG]\n"
+    "                      [--min-size S] [--max-size S]] [--smooth N] [--report R.json]\n"
     "                      [--chord-tol T] [--quiet] [--debug-dump DIR]\n"
     "\n"
-    "Meshes the part with quadrilaterals only (LayTracks, uniform tracks), checks the mesh by\n"
+    "Meshes the part with quadrilaterals only (LayTracks: uniform tracks, or with --adaptive\n"
+    "tracks as wide as the medial radius times dtheta), checks the mesh by\n"
     "every validity rule of quality.md, and writes it only if it passes. The format follows\n"
     "the extension of OUT: .msh (Gmsh 4.1), .vtu (VTK), .bdf (Nastran), .inp (Abaqus), .obj,\n"
     ".off. Progress per stage goes to stderr; the last line sums up the mesh.\n"
     "\n"
     "  -o OUT.ext       the mesh file (written atomically: nothing is left on failure)\n"
-    "  --size W         element size (default: the part's mesh.size, else 1/40 of the part's\n"
-    "                   size, twice the largest distance of a vertex from their centroid)\n"
-    "  --smooth N       Laplacian sweeps over interior nodes, then untangling sweeps on\n"
-    "                   the worst ones; never inverting an element\n"
-    "                   (default 10; 0 keeps the nodes where the tracks put them)\n"
-    "  --report R.json  quality figures before and after smoothing, counts, time per stage\n"
-    "  --chord-tol T    sagitta bound for arcs (default 1e-3 x the part's size)\n"
+    LAYTRACKS_MESHING_OPTIONS_HELP
+    "  --report R.json  quality figures before and after smoothing (with the element sizes\n"
+    "                   and the worst ratio between neighbours), counts, time per stage\n"
     "  --debug-dump DIR if the mesh fails its check, write DIR/mesh.msh and DIR/part.json\n"
     "  --quiet          print nothing but errors\n";
 
@@ -61,8 +61,11 @@ void check_mesh_extension(const std::string& path) {
 }
 
 int run_mesh(const std::vector<std::string>& argv) {
-  const Args args(argv, {"-o", "--size", "--smooth", "--report", "--chord-tol", "--debug-dump"},
-                  {"--quiet"});
+  std::set<std::string> with_value = meshing_value_options();
+  with_value.insert({"-o", "--report", "--debug-dump"});
+  std::set<std::string> flags = meshing_flags();
+  flags.insert("--quiet");
+  const Args args(argv, with_value, flags);
   if (args.positional().size() != 1) throw UsageError("mesh needs exactly one PART.json");
   const auto out = args.value("-o");
   if (!out) throw UsageError("mesh needs -o OUT.ext (.msh .vtu .bdf .inp .obj .off)");
@@ -96,7 +99,13 @@ int run_mesh(const std::vector<std::string>& argv) {
   if (const auto report = args.value("--report")) {
     nlohmann::ordered_json doc;
     doc["part"] = input;
-    doc["size"] = r.size;
+    doc["mode"] = r.adaptive ? "adaptive" : "uniform";
+    if (r.adaptive) {
+      doc["dtheta_deg"] = r.dtheta_deg;
+      doc["min_end_width"] = r.size;
+    } else {
+      doc["size"] = r.size;
+    }
     doc["smooth"] = options.mesh.smooth;
     doc["quads"] = r.mesh.elements.size();
     doc["nodes"] = r.mesh.nodes.size();
@@ -116,11 +125,18 @@ int run_mesh(const std::vector<std::string>& argv) {
   }
   if (!quiet) {
     const auto& m = r.quality.measures;
+    std::string grading;
+    if (r.adaptive) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "sizes %.3g to %.3g, worst neighbour ratio %.2f, ",
+                    r.quality.min_size, r.quality.max_size, r.quality.worst_neighbour_ratio);
+      grading = buf;
+    }
     std::printf(
         "%s: %zu quads, %zu nodes, min scaled Jacobian %.3f, beyond thresholds: skew %.1f%%, "
-        "aspect %.1f%%, taper %.1f%%, %.2f s\n",
+        "aspect %.1f%%, taper %.1f%%, %s%.2f s\n",
         out->c_str(), r.quality.quads, r.quality.nodes, m[6].worst, m[0].bad_percent,
-        m[1].bad_percent, m[2].bad_percent, seconds);
+        m[1].bad_percent, m[2].bad_percent, grading.c_str(), seconds);
   }
   return kOk;
 }

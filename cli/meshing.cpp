@@ -6,11 +6,35 @@
 
 namespace laytracks::cli {
 
+std::set<std::string> meshing_value_options() {
+  return {"--size", "--smooth", "--chord-tol", "--dtheta", "--min-size", "--max-size"};
+}
+
+std::set<std::string> meshing_flags() { return {"--adaptive", "--uniform"}; }
+
 MeshingOptions meshing_options(const Args& args) {
   MeshingOptions o;
   o.build.chord_tol = args.positive_number("--chord-tol");
   o.mesh.size = args.positive_number("--size");
   if (const auto n = args.count("--smooth")) o.mesh.smooth = static_cast<int>(*n);
+  if (args.flag("--adaptive") && args.flag("--uniform"))
+    throw UsageError("--adaptive and --uniform: choose one mode");
+  if (args.flag("--adaptive")) o.mesh.adaptive = true;
+  // --size is uniform mode's parameter: it overrides a part's mesh.mode "adaptive".
+  if (args.flag("--uniform") || (o.mesh.size && !args.flag("--adaptive"))) o.mesh.adaptive = false;
+  o.mesh.dtheta_deg = args.positive_number("--dtheta");
+  o.mesh.min_size = args.positive_number("--min-size");
+  o.mesh.max_size = args.positive_number("--max-size");
+  if (o.mesh.dtheta_deg && !(*o.mesh.dtheta_deg < 90.0))
+    throw UsageError("--dtheta must be below 90 degrees, got " + *args.value("--dtheta"));
+  if (o.mesh.min_size && o.mesh.max_size && *o.mesh.min_size > *o.mesh.max_size)
+    throw UsageError("--min-size " + *args.value("--min-size") + " is larger than --max-size " +
+                     *args.value("--max-size"));
+  if (args.flag("--uniform") && (o.mesh.dtheta_deg || o.mesh.min_size || o.mesh.max_size))
+    throw UsageError("--dtheta, --min-size and --max-size are for adaptive mode, not --uniform");
+  if (o.mesh.adaptive.value_or(false) && o.mesh.size)
+    throw UsageError("--size is the element size of uniform mode; with --adaptive, bound the "
+                     "sizes with --min-size and --max-size");
   return o;
 }
 

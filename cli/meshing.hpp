@@ -3,6 +3,7 @@
 // its per-element scaled Jacobian. One place, so that every command meshes a part the same way.
 #pragma once
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -21,8 +22,33 @@ struct MeshingOptions {
                          ///< --smooth N (default kDefaultSmooth)
 };
 
-/// Reads --size, --smooth and --chord-tol from `args`, which must declare them as options with
-/// a value. Throws UsageError for a value out of range.
+/// The options every meshing command takes: with a value, and flags.
+std::set<std::string> meshing_value_options();
+std::set<std::string> meshing_flags();
+
+/// The help lines of those options, shared by every meshing command's help text (a literal,
+/// so that each help is one string literal).
+#define LAYTRACKS_MESHING_OPTIONS_HELP                                                       \
+  "  --size W         element size of uniform mode, which it implies (default: the part's\n" \
+  "                   mesh.size, else 1/40 of the part's size, twice the largest distance\n" \
+  "                   of a vertex from their centroid)\n"                                   \
+  "  --adaptive       adaptive mode (also the part's mesh.mode \"adaptive\"): tracks as\n"   \
+  "                   wide as the medial radius R x dtheta, fine where the part is thin\n"   \
+  "  --uniform        uniform mode, whatever the part's mesh.mode says\n"                   \
+  "  --dtheta DEG     adaptive: angular increment (default: the part's mesh.dtheta_deg,\n"   \
+  "                   else 15); smaller is finer\n"                                          \
+  "  --min-size S     adaptive: no track narrower than S (default 3% of the largest medial\n" \
+  "                   radius, the paper's MIN_END_WIDTH)\n"                                  \
+  "  --max-size S     adaptive: no track wider than S (default: no bound)\n"                 \
+  "  --smooth N       Laplacian sweeps over interior nodes, then untangling sweeps on\n"     \
+  "                   the worst ones; never inverting an element\n"                         \
+  "                   (default 10; 0 keeps the nodes where the tracks put them)\n"          \
+  "  --chord-tol T    sagitta bound for arcs (default 1e-3 x the part's size)\n"
+
+/// Reads --size, --smooth, --chord-tol, --adaptive, --uniform, --dtheta, --min-size and
+/// --max-size from
+/// `args`, which must declare them (meshing_value_options, meshing_flags). Throws UsageError
+/// for a value out of range or for options that do not go together.
 MeshingOptions meshing_options(const Args& args);
 
 /// Reads the part file and builds the part: throws InputError (message with the place) when

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <numeric>
 #include <tuple>
@@ -236,35 +237,47 @@ std::vector<CorridorPiece> corridor_pieces_impl(const Part& part,
 
 namespace {
 
+/// The boundary point at arc length x along CUT-SEG cs.
+BoundaryPoint point_at_length(const Part& part, const CutSeg& cs, double x) {
+  const auto& poly = part.patches[cs.patch.index()].polygon.loops[cs.loop];
+  double u = cs.u0;
+  double walked = 0.0;
+  while (true) {
+    const double next = std::min(cs.u1, std::floor(u) + 1.0);
+    const std::size_t i = static_cast<std::size_t>(std::floor(u)) % poly.size();
+    const double seg_len = distance(poly[i], poly[(i + 1) % poly.size()]);
+    const double piece = (next - u) * seg_len;
+    if (walked + piece >= x || next >= cs.u1) {
+      u += seg_len > 0.0 ? (x - walked) / seg_len : 0.0;
+      break;
+    }
+    walked += piece;
+    u = next;
+  }
+  BoundaryPoint bp;
+  std::uint32_t seg;
+  double s;
+  bp.position = point_at(poly, u, &seg, &s);
+  if (x >= cs.length && s == 0.0) {  // the far end on its own segment, not the next one's start
+    seg = static_cast<std::uint32_t>((seg + poly.size() - 1) % poly.size());
+    s = 1.0;
+  }
+  bp.site = {BoundarySite::Kind::Segment, cs.loop, seg};
+  bp.s = s;
+  return bp;
+}
+
+/// Seeds at these arc lengths along CUT-SEG cs.
+void seeds_at(const Part& part, const CutSeg& cs, const std::vector<double>& at,
+              std::vector<TrackSeed>& seeds) {
+  for (double x : at) seeds.push_back({cs.patch, point_at_length(part, cs, x)});
+}
+
 /// Seeds at equal arc length along CUT-SEG cs, cutting it into `tracks` pieces.
 void seeds_along(const Part& part, const CutSeg& cs, double tracks, std::vector<TrackSeed>& seeds) {
-  const auto& poly = part.patches[cs.patch.index()].polygon.loops[cs.loop];
-  for (int k = 1; k < static_cast<int>(tracks); ++k) {
-    // Walk the boundary to the arc length k L / n.
-    const double target = cs.length * k / tracks;
-    double u = cs.u0;
-    double walked = 0.0;
-    while (true) {
-      const double next = std::min(cs.u1, std::floor(u) + 1.0);
-      const std::size_t i = static_cast<std::size_t>(std::floor(u)) % poly.size();
-      const double seg_len = distance(poly[i], poly[(i + 1) % poly.size()]);
-      const double piece = (next - u) * seg_len;
-      if (walked + piece >= target || next >= cs.u1) {
-        u += seg_len > 0.0 ? (target - walked) / seg_len : 0.0;
-        break;
-      }
-      walked += piece;
-      u = next;
-    }
-    TrackSeed seed;
-    seed.patch = cs.patch;
-    std::uint32_t seg;
-    double s;
-    seed.point.position = point_at(poly, u, &seg, &s);
-    seed.point.site = {BoundarySite::Kind::Segment, cs.loop, seg};
-    seed.point.s = s;
-    seeds.push_back(seed);
-  }
+  std::vector<double> at;
+  for (int k = 1; k < static_cast<int>(tracks); ++k) at.push_back(cs.length * k / tracks);
+  seeds_at(part, cs, at, seeds);
 }
 
 /// Eq. (1), ceil(L / w - 0.5): halves round down. The small margin keeps a length of exactly
@@ -275,12 +288,10 @@ double track_count(double length, double width) {
 
 }  // namespace
 
-std::vector<TrackSeed> track_seeds(const Part& part,
-                                   const std::vector<MedialAxis>& axes,
-                                   const CutGraph& graph,
-                                   double width) {
-  const Corridors corridors = find_corridors(part, axes, graph);
-  // The longest CUT-SEG of each corridor (the first one on ties: deterministic).
+namespace {
+
+/// The longest CUT-SEG of each corridor (the first one on ties: deterministic).
+std::vector<std::size_t> masters(const Corridors& corridors) {
   std::vector<std::size_t> master(corridors.count, SIZE_MAX);
   for (std::size_t i = 0; i < corridors.segs.size(); ++i) {
     // Lengths equal within rounding are ties, kept by the first: the same in every pose.
@@ -288,11 +299,92 @@ std::vector<TrackSeed> track_seeds(const Part& part,
     if (m == SIZE_MAX || corridors.segs[i].length > corridors.segs[m].length * (1.0 + kHalfMargin))
       m = i;
   }
+  master.erase(std::remove(master.begin(), master.end(), SIZE_MAX), master.end());
+  return master;
+}
+
+/// Two widths this close (relative) are equal: both ends of the corridor step together.
+constexpr double kSameWidthRel = 1e-6;
+
+/// Delta S at arc length x along CUT-SEG cs, from the width law.
+double width_at(const Part& part, const TrackWidthLaw& law, const CutSeg& cs, double x) {
+  return law.width(cs.patch, point_at_length(part, cs, x));
+}
+
+}  // namespace
+
+std::vector<double> march_tracks(double length, const std::function<double(double)>& width) {
+  std::vector<double> left, right;
+  double lo = 0.0, hi = length;
+  // Each step places at least one end width, which is positive: bounded by length / floor.
+  while (hi > lo) {
+    const double w0 = width(lo), wn = width(hi);
+    const double rem = hi - lo;
+    const double ratio = rem / (w0 + wn);
+    if (ratio < kOneCutRatio * (1.0 + kHalfMargin)) break;  // one track: no CUT-VERT
+    if (ratio <= kManyCutsRatio * (1.0 + kHalfMargin)) {
+      // One CUT-VERT, splitting the rest in the ratio of the end widths (Step 3).
+      left.push_back(lo + rem * w0 / (w0 + wn));
+      break;
+    }
+    // Room for more: step from the narrower end (both when they are equal), so that the
+    // corridor is paved from its fine end, whichever end of the loop that is.
+    if (std::abs(w0 - wn) <= kSameWidthRel * std::max(w0, wn)) {
+      lo += w0;
+      hi -= wn;
+      left.push_back(lo);
+      right.push_back(hi);
+    } else if (w0 < wn) {
+      lo += w0;
+      left.push_back(lo);
+    } else {
+      hi -= wn;
+      right.push_back(hi);
+    }
+  }
+  left.insert(left.end(), right.rbegin(), right.rend());
+  return left;
+}
+
+std::vector<TrackSeed> track_seeds(const Part& part,
+                                   const std::vector<MedialAxis>& axes,
+                                   const CutGraph& graph,
+                                   double width) {
+  const Corridors corridors = find_corridors(part, axes, graph);
   std::vector<TrackSeed> seeds;
-  for (std::size_t m : master) {
-    if (m == SIZE_MAX) continue;
+  for (std::size_t m : masters(corridors)) {
     const CutSeg& cs = corridors.segs[m];
     seeds_along(part, cs, track_count(cs.length, width), seeds);
+  }
+  return seeds;
+}
+
+std::vector<TrackSeed> adaptive_track_seeds(const Part& part,
+                                            const std::vector<MedialAxis>& axes,
+                                            const CutGraph& graph,
+                                            const TrackWidthLaw& law) {
+  const Corridors corridors = find_corridors(part, axes, graph);
+  std::vector<TrackSeed> seeds;
+  for (std::size_t m : masters(corridors)) {
+    const CutSeg& cs = corridors.segs[m];
+    const auto at = march_tracks(cs.length, [&](double x) { return width_at(part, law, cs, x); });
+    seeds_at(part, cs, at, seeds);
+  }
+  return seeds;
+}
+
+std::vector<TrackSeed> adaptive_gap_seeds(const Part& part,
+                                          const std::vector<MedialAxis>& axes,
+                                          const CutGraph& graph,
+                                          const TrackWidthLaw& law) {
+  const Corridors corridors = find_corridors(part, axes, graph);
+  std::vector<TrackSeed> seeds;
+  for (const CutSeg& cs : corridors.segs) {
+    const auto width = [&](double x) { return width_at(part, law, cs, x); };
+    // As in uniform mode: longer than kGapWidths x its (mean end) width.
+    if (cs.length <= 0.5 * kGapWidths * (width(0.0) + width(cs.length)) * (1.0 + kHalfMargin))
+      continue;
+    seeds_at(part, cs, march_tracks(cs.length, width), seeds);
   }
   return seeds;
 }

@@ -1,8 +1,10 @@
 // Private: CUT-SEGs, corridors and where the track rails of uniform mode start.
 #pragma once
 
+#include <functional>
 #include <vector>
 
+#include "laytracks/cutgraph/adaptive.hpp"
 #include "laytracks/cutgraph/cut_graph.hpp"
 
 namespace laytracks::cutgraph_detail {
@@ -48,5 +50,27 @@ std::vector<TrackSeed> gap_seeds(const Part& part,
                                  const std::vector<MedialAxis>& axes,
                                  const CutGraph& graph,
                                  double width);
+
+/// Algorithm III, Step 3: below this ratio of the length left to the two end widths the rest
+/// is one track; up to kManyCutsRatio it is two, split in the ratio of the end widths.
+constexpr double kOneCutRatio = 0.7;
+constexpr double kManyCutsRatio = 1.3;
+
+/// Algorithm III along a CUT-SEG of this length, `width(x)` the track width Delta S at arc
+/// length x: where its CUT-VERTs go, ascending. Tracks are laid from both ends, the narrower
+/// end first, until the ratio rule of Step 3 ends it (docs/adaptive.md).
+std::vector<double> march_tracks(double length, const std::function<double(double)>& width);
+
+/// Adaptive mode: the seeds of Algorithm III along each corridor's longest CUT-SEG.
+std::vector<TrackSeed> adaptive_track_seeds(const Part& part,
+                                            const std::vector<MedialAxis>& axes,
+                                            const CutGraph& graph,
+                                            const TrackWidthLaw& law);
+
+/// Adaptive mode: seeds for every CUT-SEG longer than kGapWidths x its end widths' mean.
+std::vector<TrackSeed> adaptive_gap_seeds(const Part& part,
+                                          const std::vector<MedialAxis>& axes,
+                                          const CutGraph& graph,
+                                          const TrackWidthLaw& law);
 
 }  // namespace laytracks::cutgraph_detail

@@ -146,10 +146,16 @@ CutGraph build_cut_graph(const Part& part,
                          const CutGraphOptions& options) {
   CutGraph graph;
   std::vector<Vec3> suppressed;
-  if (options.track_width > 0.0 && options.narrow_fraction > 0.0) {
-    cutgraph_detail::remove_narrow_corridors(part, axes,
-                                             options.narrow_fraction * options.track_width,
-                                             suppressed, graph.deleted, graph.narrow_kept);
+  const TrackWidthLaw* law = options.adaptive;
+  const bool tracks = options.track_width > 0.0 || law;
+  if (tracks && options.narrow_fraction > 0.0) {
+    const auto min_width = [&](double radius) {
+      // Adaptive: the width a track would have at the branch point (Delta theta_in alone).
+      return options.narrow_fraction *
+             (law ? law->width_for(radius, 1.0) : options.track_width);
+    };
+    cutgraph_detail::remove_narrow_corridors(part, axes, min_width, suppressed, graph.deleted,
+                                             graph.narrow_kept);
   }
   cutgraph_detail::RailLayer layer(part, axes, graph);
   layer.suppress(suppressed);
@@ -162,13 +168,14 @@ CutGraph build_cut_graph(const Part& part,
     return n;
   };
   graph.corridor_count = count();
-  if (options.track_width > 0.0 && options.lay_tracks) {
-    for (const auto& seed : cutgraph_detail::track_seeds(part, axes, graph, options.track_width)) {
-      layer.lay_from(seed.patch, seed.point);
-    }
+  if (tracks && options.lay_tracks) {
+    const auto seeds = law ? cutgraph_detail::adaptive_track_seeds(part, axes, graph, *law)
+                           : cutgraph_detail::track_seeds(part, axes, graph, options.track_width);
+    for (const auto& seed : seeds) layer.lay_from(seed.patch, seed.point);
     // Sides the longest CUT-SEG's rails did not reach get tracks of their own (docs/cutgraph.md).
     for (int round = 0; round < 3; ++round) {
-      const auto gaps = cutgraph_detail::gap_seeds(part, axes, graph, options.track_width);
+      const auto gaps = law ? cutgraph_detail::adaptive_gap_seeds(part, axes, graph, *law)
+                            : cutgraph_detail::gap_seeds(part, axes, graph, options.track_width);
       if (gaps.empty()) break;
       for (const auto& seed : gaps) layer.lay_from(seed.patch, seed.point);
     }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <map>
 #include <numeric>
 #include <set>
@@ -48,7 +49,7 @@ bool at_corner(const Part& part, const BoundaryIndex& index, const GCutVert& g) 
 
 void remove_narrow_corridors(const Part& part,
                              const std::vector<MedialAxis>& axes,
-                             double min_width,
+                             const std::function<double(double)>& min_width,
                              std::vector<Vec3>& suppressed,
                              std::vector<DeletedRail>& deleted,
                              std::size_t& kept) {
@@ -75,10 +76,18 @@ void remove_narrow_corridors(const Part& part,
     for (const CutVert& c : g.cuts) cut_at[key(c.patch, c.at.loop, c.at.u())] = c.g;
     // Corridors: width (longest CUT-SEG) and bounding break points.
     std::map<std::size_t, double> width;
+    std::map<std::size_t, double> radius;  // the longest rail bounding the corridor
     std::map<std::size_t, std::set<std::uint32_t>> bounds;
     std::set<std::size_t> small_feature;
     for (const CorridorPiece& c : r.pieces) {
       width[c.corridor] = std::max(width[c.corridor], c.length);
+      const auto& poly = part.patches[c.patch.index()].polygon.loops[c.loop];
+      const auto at = [&](double u) {
+        const auto i = static_cast<std::size_t>(std::floor(u)) % poly.size();
+        return lerp(poly[i], poly[(i + 1) % poly.size()], u - std::floor(u));
+      };
+      radius[c.corridor] = std::max({radius[c.corridor], distance(at(c.u0), c.ma0),
+                                     distance(at(c.u1), c.ma1)});
       for (double u : {c.u0, c.u1}) {
         const auto it = cut_at.find(key(c.patch, c.loop, u));
         if (it == cut_at.end()) {
@@ -118,7 +127,8 @@ void remove_narrow_corridors(const Part& part,
     const auto quantum = [&](double x) { return std::llround(x / grain); };
     std::vector<std::pair<long long, std::size_t>> order;
     for (const auto& [corridor, w] : width) {
-      if (quantum(w) < quantum(min_width)) order.push_back({quantum(w), corridor});
+      if (quantum(w) < quantum(min_width(radius[corridor])))
+        order.push_back({quantum(w), corridor});
     }
     std::sort(order.begin(), order.end());
     std::vector<std::pair<double, std::size_t>> narrow;

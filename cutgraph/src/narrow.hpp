@@ -1,6 +1,7 @@
 // Private: removing narrow corridors by deleting source rails.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "laytracks/cutgraph/cut_graph.hpp"
@@ -8,12 +9,12 @@
 namespace laytracks::cutgraph_detail {
 
 /// Deletes source rails, one connected set at a time, until no corridor is narrower than
-/// `min_width` except small features (a corridor bounded by a convex corner) and corridors
+/// `min_width(R)` (R: the longest rail bounding it, the radius at its branch point) except small features (a corridor bounded by a convex corner) and corridors
 /// whose only deletable rail is the last one at a concave vertex (counted in `kept`).
 /// `suppressed` receives the positions of the deleted source points, `deleted` a record each.
 void remove_narrow_corridors(const Part& part,
                              const std::vector<MedialAxis>& axes,
-                             double min_width,
+                             const std::function<double(double)>& min_width,
                              std::vector<Vec3>& suppressed,
                              std::vector<DeletedRail>& deleted,
                              std::size_t& kept);

@@ -19,10 +19,12 @@
 #include <deque>
 #include <limits>
 #include <map>
+#include <tuple>
 #include <sstream>
 
 #include "fill.hpp"
 #include "laytracks/brep/error.hpp"
+#include "laytracks/cutgraph/adaptive.hpp"
 
 namespace laytracks {
 
@@ -42,6 +44,9 @@ constexpr double kMergeBreakRel = 1e-8;
 /// Two rails from one boundary node closer in angle than this are not both kept (10 degrees:
 /// the quad at their tip would have a scaled Jacobian below sin 10 = 0.17).
 constexpr double kMinFanAngle = 10.0 * kPi / 180.0;
+/// Adaptive mode: the track widths beside a rail's foot count in Eq. (2) within this factor
+/// of the width law's there.
+constexpr double kFootWidthBound = 2.0;
 /// Two MA points of a patch closer than this x the part size are one node.
 constexpr double kSamePointRel = 1e-9;
 
@@ -81,14 +86,15 @@ struct PatchGraph {
   std::vector<CEdge> edges;
   std::vector<std::vector<Half>> faces;
   std::map<std::uint32_t, Vec2> boundary_2d;  ///< mesh node -> position in the patch frame
+  std::map<std::uint32_t, BoundaryPoint> foot;  ///< adaptive: coarse node of a rail's foot
 };
 
 class QuadBuilder {
  public:
   QuadBuilder(const Part& part, const CutGraph& graph,
               const QuadOptions& options)
-      : part_(part), graph_(graph), h_(options.size) {
-    if (!(h_ > 0.0)) throw InternalError("mesher: the element size must be positive");
+      : part_(part), graph_(graph), h_(options.size), law_(options.adaptive) {
+    if (!(h_ > 0.0) && !law_) throw InternalError("mesher: the element size must be positive");
   }
 
   QuadResult run() {
@@ -142,6 +148,14 @@ class QuadBuilder {
       if (v == arc.to) return 1.0;
       return arc_point.at(v.value).second;
     };
+    arc_edges_.assign(part_.arcs.size(), {});
+    for (std::size_t e = 0; e < ne; ++e) {
+      const BrepEdge& edge = part_.edges[e];
+      if (edge.arc < 0) continue;
+      const PartArc& arc = part_.arcs[static_cast<std::size_t>(edge.arc)];
+      arc_edges_[static_cast<std::size_t>(edge.arc)].push_back(
+          {arc_u(arc, edge.a), arc_u(arc, edge.b), EdgeId(e)});
+    }
     vertex_node_.assign(part_.vertices.size(), kNone);
     for (const Patch& patch : part_.patches)
       for (const Loop& loop : patch.loops)
@@ -201,8 +215,9 @@ class QuadBuilder {
       en.node.push_back(vertex_node_[un.b.index()]);
       for (std::size_t j = 0; j + 1 < en.t.size(); ++j) {
         const double piece = (en.t[j + 1] - en.t[j]) * len;
+        const double h = law_ ? piece_size(e, 0.5 * (en.t[j] + en.t[j + 1])) : h_;
         std::uint32_t count =
-            piece > (kSplitPiece + kRoundingSlack) * h_ ? edges_for(piece) : 1u;
+            piece > (kSplitPiece + kRoundingSlack) * h ? edges_for(piece, h) : 1u;
         if (un.arc >= 0) {  // chords within the chord tolerance
           const PartArc& arc = part_.arcs[static_cast<std::size_t>(un.arc)];
           const double angle = (en.t[j + 1] - en.t[j]) * arc.span;
@@ -234,10 +249,23 @@ class QuadBuilder {
 
   static Vec3 lerp3(Vec3 a, Vec3 b, double t) { return a + t * (b - a); }
 
+  /// Adaptive mode: the track width at parameter t of a unit (for an arc, on the
+  /// discretisation edge under that parameter).
+  double piece_size(std::size_t u, double t) const {
+    const Unit& un = units_[u];
+    if (un.arc < 0) return law_->width_on_edge(un.edge, t);
+    for (const auto& [ua, ub, e] : arc_edges_[static_cast<std::size_t>(un.arc)]) {
+      const double lo = std::min(ua, ub), hi = std::max(ua, ub);
+      if (t >= lo && t <= hi && hi > lo) return law_->width_on_edge(e, (t - ua) / (ub - ua));
+    }
+    return law_->end_width();
+  }
+
   /// Mesh edges for a length: round(length / h), at least 1, halves rounded down whatever the
   /// last bits of the length (so every pose of a part gets the same counts).
-  std::uint32_t edges_for(double length) const {
-    const double x = length / h_;
+  std::uint32_t edges_for(double length) const { return edges_for(length, h_); }
+  static std::uint32_t edges_for(double length, double h) {
+    const double x = length / h;
     return std::max<std::uint32_t>(1, static_cast<std::uint32_t>(std::floor(x + 0.5 - kRoundingSlack)));
   }
 
@@ -315,6 +343,13 @@ class QuadBuilder {
                             " starts at a point that is not on its boundary nodes");
       }
       const std::uint32_t a = cit->second;
+      if (law_ && !g.foot.count(a)) {
+        BoundaryPoint bp;
+        bp.site = {BoundarySite::Kind::Segment, cut.at.loop, cut.at.segment};
+        bp.s = cut.at.s;
+        bp.position = cut.position;
+        g.foot.emplace(a, bp);
+      }
       // A rail to a convex corner, or to where the axis touches the boundary (radius 0),
       // bounds nothing: it lies on the boundary.
       if (distance(g.nodes[a].p, mc.point.position) <= tol || mc.point.radius <= tol) continue;
@@ -344,6 +379,7 @@ class QuadBuilder {
     }
     drop_narrow_fans(g);
     drop_dangling_rails(g);
+    if (law_) adaptive_rail_counts(pid, g);
     trace_faces(pid, g);
   }
 
@@ -399,6 +435,42 @@ class QuadBuilder {
     g.edges.erase(std::remove_if(g.edges.begin(), g.edges.end(),
                                  [&](const CEdge&) { return drop[k++]; }),
                   g.edges.end());
+  }
+
+  /// Adaptive mode, Eq. (2): the rails meeting at one MA point all get N = round(L_avg / W),
+  /// L_avg their mean length and W the mean, over their boundary nodes, of the mean length of
+  /// the two boundary mesh edges there (the widths of the tracks either side), each held
+  /// within a factor kFootWidthBound of the law's width at that node: a sliver track beside
+  /// a rail (two rails landing close) must not make it thousands of edges long. Eq. (3) then
+  /// spaces the nodes R_i / N along each rail.
+  void adaptive_rail_counts(PatchId pid, PatchGraph& g) const {
+    std::vector<double> side_sum(g.nodes.size(), 0.0);
+    std::vector<int> sides(g.nodes.size(), 0);
+    for (const CEdge& e : g.edges) {
+      if (e.rail) continue;
+      const double step = distance(g.nodes[e.a].p, g.nodes[e.b].p) / edges_[e.edge].count[e.piece];
+      for (std::uint32_t v : {e.a, e.b}) {
+        side_sum[v] += step;
+        ++sides[v];
+      }
+    }
+    std::map<std::uint32_t, std::pair<double, double>> at;  // MA node -> (sum R, sum W)
+    std::map<std::uint32_t, int> rails;
+    for (const CEdge& e : g.edges) {
+      if (!e.rail || sides[e.a] == 0) continue;
+      auto& [r, w] = at[e.b];
+      r += distance(g.nodes[e.a].p, g.nodes[e.b].p);
+      const double law_w = law_->width(pid, g.foot.at(e.a));
+      w += std::clamp(side_sum[e.a] / sides[e.a], law_w / kFootWidthBound, law_w * kFootWidthBound);
+      ++rails[e.b];
+    }
+    for (CEdge& e : g.edges) {
+      if (!e.rail) continue;
+      const auto it = at.find(e.b);
+      if (it == at.end()) continue;
+      const double n = rails.at(e.b);
+      e.count = edges_for(it->second.first / n, it->second.second / n);
+    }
   }
 
   /// Rails whose MA end meets no other rail bound no face: dropped (repeatedly).
@@ -719,6 +791,9 @@ class QuadBuilder {
   std::vector<std::uint32_t> gcut_node_;
   std::vector<EdgeNodes> edges_;
   std::vector<PatchGraph> patches_;
+  const TrackWidthLaw* law_ = nullptr;
+  /// Per arc, its discretisation edges: parameters of the edge's a and b along the arc.
+  std::vector<std::vector<std::tuple<double, double, EdgeId>>> arc_edges_;
 };
 
 }  // namespace

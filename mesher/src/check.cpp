@@ -133,6 +133,28 @@ class Checker {
     return "mesh edge from " + node_text(a) + " to " + node_text(b);
   }
 
+  /// True when point c (patch frame) lies between a chord of one of the patch's arcs and the
+  /// arc, on the side of the arc's centre: outside the polygon but inside the true patch.
+  bool in_arc_segment(std::size_t p, Vec2 c) const {
+    const Patch& patch = part_.patches[p];
+    bool inside = false;
+    indices_[p].for_each_near(c, 2.0 * part_.chord_tol, [&](std::uint32_t si) {
+      const BoundarySegment& s = indices_[p].segments()[si];
+      const std::int64_t arc = part_.edges[s.edge.index()].arc;
+      if (arc < 0 || inside) return;
+      const PartArc& a = part_.arcs[static_cast<std::size_t>(arc)];
+      const Vec2 centre = patch.frame.to_2d(a.center);
+      const Vec2 d = s.b - s.a;
+      const double len2 = dot(d, d);
+      if (!(len2 > 0.0)) return;
+      const double t = dot(c - s.a, d) / len2;
+      inside = cross(d, centre - s.a) > 0.0 &&  // the material side holds the centre: convex
+               cross(d, c - s.a) <= 0.0 &&      // c beyond the chord
+               t >= 0.0 && t <= 1.0 && distance(c, centre) <= a.radius;
+    });
+    return inside;
+  }
+
   void index_patches() {
     const double slack = MeshTolerances::kOnPlane * size_;
     for (const Patch& patch : part_.patches) {
@@ -328,8 +350,9 @@ class Checker {
         return element_place(i) + " is inverted or degenerate: " + why;
       });
     }
-    // Rule 3: inside the patch polygon.
-    if (!indices_[p].contains(c)) {
+    // Rule 3: inside the patch: its polygon, or a circular segment between a chord of a convex
+    // arc and the arc (the true boundary there).
+    if (!indices_[p].contains(c) && !in_arc_segment(p, c)) {
       fail(3, [&] { return element_place(i) + " has its centroid outside its patch's polygon"; });
     }
     // Rule 4: the signed area in the patch frame.

@@ -1,8 +1,10 @@
 #include "laytracks/mesher/mesh_part.hpp"
 
 #include <chrono>
+#include <memory>
 
 #include "laytracks/brep/error.hpp"
+#include "laytracks/cutgraph/adaptive.hpp"
 #include "laytracks/cutgraph/cut_graph.hpp"
 #include "laytracks/medial/part_medial.hpp"
 
@@ -27,19 +29,44 @@ class Clock {
 
 }  // namespace
 
+CutGraphOptions cut_graph_options(const Part& part,
+                                  const std::vector<MedialAxis>& axes,
+                                  const MeshPartOptions& options,
+                                  std::unique_ptr<TrackWidthLaw>& law) {
+  CutGraphOptions cg;
+  law.reset();
+  if (options.adaptive.value_or(part.mesh.mode == MeshMode::Adaptive)) {
+    AdaptiveOptions ao;
+    ao.dtheta =
+        options.dtheta_deg.value_or(part.mesh.dtheta_deg.value_or(kDefaultDthetaDeg)) * kPi / 180.0;
+    if (options.min_size) ao.min_size = *options.min_size;
+    if (options.max_size) ao.max_size = *options.max_size;
+    law = std::make_unique<TrackWidthLaw>(part, axes, ao);
+    cg.adaptive = law.get();
+  } else {
+    cg.track_width = options.size.value_or(part.mesh.size.value_or(default_element_size(part)));
+  }
+  return cg;
+}
+
 MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const StageFn& on_stage) {
   auto stage = [&](const char* name) {
     if (on_stage) on_stage(name);
   };
   MeshPartResult r;
+  r.adaptive = options.adaptive.value_or(part.mesh.mode == MeshMode::Adaptive);
   r.size = options.size.value_or(part.mesh.size.value_or(default_element_size(part)));
   Clock clock;
   stage("medial");
   const std::vector<MedialAxis> axes = compute_medial_axes(part);
   r.times.medial = clock.lap();
   stage("rails");
-  CutGraphOptions cg;
-  cg.track_width = r.size;
+  std::unique_ptr<TrackWidthLaw> law;
+  const CutGraphOptions cg = cut_graph_options(part, axes, options, law);
+  if (law) {
+    r.dtheta_deg = law->options().dtheta * 180.0 / kPi;
+    r.size = law->end_width();
+  }
   const CutGraph graph = build_cut_graph(part, axes, cg);
   if (!graph.problems.empty()) {
     throw InternalError("rails: " + graph.problems.front() + " (" +
@@ -51,6 +78,7 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
   stage("quads");
   QuadOptions qo;
   qo.size = r.size;
+  qo.adaptive = law.get();
   QuadResult quads = build_quads(part, graph, qo);
   r.mesh = std::move(quads.mesh);
   r.stats = quads.stats;

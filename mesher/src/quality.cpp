@@ -211,7 +211,11 @@ QualitySummary summarize(const Part& part, const QuadMesh& mesh) {
   out.nodes = mesh.nodes.size();
   std::array<std::vector<double>, 8> values;
   std::size_t bad_angle = 0;
-  for (const MeshElement& e : mesh.elements) {
+  // Sizes and edges of the measured quads, for the size grading.
+  std::vector<double> size_of(mesh.elements.size(), 0.0);
+  std::vector<std::pair<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t>> edge_use;
+  for (std::size_t ei = 0; ei < mesh.elements.size(); ++ei) {
+    const MeshElement& e = mesh.elements[ei];
     if (!e.is_quad()) {
       ++out.triangles;
       ++out.invalid_elements;
@@ -228,8 +232,17 @@ QualitySummary summarize(const Part& part, const QuadMesh& mesh) {
       ++out.invalid_elements;
       continue;
     }
-    const QuadQuality q = measure_quad(corners, part.patches[e.patch.index()].frame.n);
+    const Vec3 normal = part.patches[e.patch.index()].frame.n;
+    const QuadQuality q = measure_quad(corners, normal);
     ++out.measured;
+    const double area = 0.5 * std::abs(dot(normal, cross(corners[2] - corners[0],
+                                                         corners[3] - corners[1])));
+    size_of[ei] = std::sqrt(area);
+    out.min_size = out.measured == 1 ? size_of[ei] : std::min(out.min_size, size_of[ei]);
+    out.max_size = std::max(out.max_size, size_of[ei]);
+    for (std::size_t k = 0; k < 4; ++k)
+      edge_use.push_back({std::minmax(e.nodes[k], e.nodes[(k + 1) % 4]),
+                          static_cast<std::uint32_t>(ei)});
     if (q.inverted) ++out.invalid_elements;
     if (q.min_angle_deg < QualityThresholds::kMinAngleDeg ||
         q.max_angle_deg > QualityThresholds::kMaxAngleDeg) {
@@ -239,6 +252,18 @@ QualitySummary summarize(const Part& part, const QuadMesh& mesh) {
   }
   for (std::size_t m = 0; m < 8; ++m)
     out.measures[m] = summarize_measure(measure_defs()[m], values[m]);
+  std::sort(edge_use.begin(), edge_use.end());
+  std::vector<double> ratios;
+  for (std::size_t i = 0; i + 1 < edge_use.size(); ++i) {
+    if (edge_use[i].first != edge_use[i + 1].first) continue;
+    const double a = size_of[edge_use[i].second], b = size_of[edge_use[i + 1].second];
+    if (a > 0.0 && b > 0.0) ratios.push_back(std::max(a, b) / std::min(a, b));
+  }
+  if (!ratios.empty()) {
+    std::sort(ratios.begin(), ratios.end());
+    out.worst_neighbour_ratio = ratios.back();
+    out.p95_neighbour_ratio = percentile(ratios, 0.95);
+  }
   if (out.measured > 0) {
     out.bad_angle_percent =
         100.0 * static_cast<double>(bad_angle) / static_cast<double>(out.measured);
@@ -256,6 +281,10 @@ void write_quality_json(std::ostream& out, const QualitySummary& summary, bool h
   j["invalid_elements"] = summary.invalid_elements;
   j["measured"] = summary.measured;
   j["bad_angle_percent"] = summary.bad_angle_percent;
+  j["size"] = {{"min", summary.min_size},
+               {"max", summary.max_size},
+               {"worst_neighbour_ratio", summary.worst_neighbour_ratio},
+               {"p95_neighbour_ratio", summary.p95_neighbour_ratio}};
   json measures = json::object();
   for (const MeasureSummary& m : summary.measures) {
     json e;

@@ -28,6 +28,21 @@ std::string json_of(const QualitySummary& s, bool histograms) {
 
 }  // namespace
 
+TEST_CASE("the size grading is the worst size ratio of two quads sharing an edge",
+          "[summary]") {
+  const Part part = load_part(case_path("rect_10x4"));
+  GridMesh g = grid_mesh(part, 0.5);
+  // x -> x^2 / 10: column k (from 0.5 k to 0.5 (k + 1)) becomes 0.025 (2k + 1) wide, so the
+  // sizes sqrt(width x 0.5) of columns 0 and 1 differ by sqrt(3), the worst neighbours.
+  for (Vec3& x : g.mesh.nodes) x.x = x.x * x.x / 10.0;
+  const QualitySummary s = summarize(part, g.mesh);
+  CHECK(s.min_size == Approx(std::sqrt(0.025 * 0.5)));
+  CHECK(s.max_size == Approx(std::sqrt(0.025 * 39 * 0.5)));
+  CHECK(s.worst_neighbour_ratio == Approx(std::sqrt(3.0)));
+  CHECK(s.p95_neighbour_ratio < s.worst_neighbour_ratio);
+  CHECK(s.p95_neighbour_ratio > 1.0);
+}
+
 TEST_CASE("a grid of squares is ideal in every measure", "[summary]") {
   const Part part = load_part(case_path("rect_10x4"));
   const GridMesh g = grid_mesh(part, 0.5);
@@ -55,6 +70,10 @@ TEST_CASE("a grid of squares is ideal in every measure", "[summary]") {
     CHECK(std::accumulate(ms.histogram.counts.begin(), ms.histogram.counts.end(), std::size_t{0}) ==
           160);
   }
+  CHECK(s.min_size == Approx(0.5));
+  CHECK(s.max_size == Approx(0.5));
+  CHECK(s.worst_neighbour_ratio == Approx(1.0));
+  CHECK(s.p95_neighbour_ratio == Approx(1.0));
   // The ideal values land in the bins that start at them (the scaled Jacobian in the last).
   CHECK(s.measures[0].histogram.counts[0] == 160);
   CHECK(s.measures[4].histogram.counts[18] == 160);  // [90, 95)
@@ -131,7 +150,7 @@ TEST_CASE("the quality JSON has a fixed key order and is deterministic", "[summa
   std::vector<std::string> keys;
   for (const auto& [k, v] : j.items()) keys.push_back(k);
   CHECK(keys == std::vector<std::string>{"elements", "nodes", "quads", "triangles",
-                                         "invalid_elements", "measured", "bad_angle_percent",
+                                         "invalid_elements", "measured", "bad_angle_percent", "size",
                                          "measures"});
   std::vector<std::string> measures;
   for (const auto& [k, v] : j["measures"].items()) measures.push_back(k);

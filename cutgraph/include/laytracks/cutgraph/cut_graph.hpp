@@ -111,12 +111,18 @@ struct CutGraph {
   std::size_t track_count = 0;     ///< tracks, once the track rails are laid
 };
 
+class TrackWidthLaw;
+
 struct CutGraphOptions {
   /// Track width for uniform mode. Rails are laid in every corridor at this spacing (Eq. 1);
   /// 0 lays only the source rails.
   double track_width = 0.0;
+  /// Adaptive mode (Algorithm III): track widths from this law instead of track_width. The
+  /// law must outlive the call.
+  const TrackWidthLaw* adaptive = nullptr;
   /// A corridor whose longest CUT-SEG is shorter than this x the track width is narrow, and its
-  /// rails are deleted until it is not (0 keeps every rail).
+  /// rails are deleted until it is not (0 keeps every rail). In adaptive mode the width is the
+  /// law's at the radius of the corridor's branch point.
   double narrow_fraction = 0.5;
   /// Lay the track rails (false: stop after removing narrow corridors, to look at corridors).
   bool lay_tracks = true;

@@ -16,6 +16,9 @@ namespace laytracks {
 struct QuadOptions {
   /// Element size h: the track width the rails were laid with (uniform mode).
   double size = 0.0;
+  /// Adaptive mode: the width law the rails were laid with; boundary pieces are split at its
+  /// local width and rail counts follow Eq. (2). Must outlive the call.
+  const TrackWidthLaw* adaptive = nullptr;
 };
 
 /// Names of the face templates, in mesher_detail::FillKind order (docs/mesher.md).

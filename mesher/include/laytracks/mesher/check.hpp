@@ -129,6 +129,13 @@ struct QualitySummary {
   std::array<MeasureSummary, 8> measures;
   /// % of the measured quads with an interior angle < 45 or > 135 degrees.
   double bad_angle_percent = 0.0;
+  /// Element size: the square root of the quad's area (measured quads).
+  double min_size = 0.0;
+  double max_size = 0.0;
+  /// Size grading: over every pair of measured quads sharing an edge, the larger size over
+  /// the smaller; the worst pair and the 95th percentile (1 with no pair).
+  double worst_neighbour_ratio = 1.0;
+  double p95_neighbour_ratio = 1.0;
 };
 
 /// Measures every quad of `mesh` with measure_quad and its patch's normal, and gathers the

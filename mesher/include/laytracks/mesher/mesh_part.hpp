@@ -3,12 +3,15 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "laytracks/brep/error.hpp"
 #include "laytracks/brep/part.hpp"
+#include "laytracks/cutgraph/adaptive.hpp"
+#include "laytracks/cutgraph/cut_graph.hpp"
 #include "laytracks/mesher/build_quads.hpp"
 #include "laytracks/mesher/check.hpp"
 #include "laytracks/mesher/quad_mesh.hpp"
@@ -25,6 +28,13 @@ constexpr int kDefaultSmooth = 10;
 struct MeshPartOptions {
   std::optional<double> size;  ///< element size; default: mesh.size, else default_element_size
   int smooth = kDefaultSmooth;  ///< Laplacian sweeps over interior nodes (0: none)
+  /// Adaptive mode (Algorithm III); default: the part's mesh.mode.
+  std::optional<bool> adaptive;
+  /// Delta theta_in of adaptive mode, degrees; default: mesh.dtheta_deg, else
+  /// kDefaultDthetaDeg.
+  std::optional<double> dtheta_deg;
+  std::optional<double> min_size;  ///< adaptive: no track narrower (default MIN_END_WIDTH)
+  std::optional<double> max_size;  ///< adaptive: no track wider (default: no bound)
 };
 
 /// Seconds spent in each stage.
@@ -38,7 +48,9 @@ struct StageTimes {
 
 struct MeshPartResult {
   QuadMesh mesh;
-  double size = 0.0;
+  double size = 0.0;  ///< uniform: the element size; adaptive: MIN_END_WIDTH (the finest)
+  bool adaptive = false;
+  double dtheta_deg = 0.0;  ///< adaptive: Delta theta_in
   QuadStats stats;
   std::size_t rail_chains = 0;
   std::size_t tracks = 0;
@@ -63,6 +75,13 @@ class InvalidMeshError : public InternalError {
   QuadMesh mesh_;
   MeshCheck check_;
 };
+
+/// The cut-graph options for these meshing options: the uniform track width, or in adaptive
+/// mode the width law, which `law` receives (it must outlive the options).
+CutGraphOptions cut_graph_options(const Part& part,
+                                  const std::vector<MedialAxis>& axes,
+                                  const MeshPartOptions& options,
+                                  std::unique_ptr<TrackWidthLaw>& law);
 
 /// Meshes the part and checks the result by quality.md. Throws InvalidMeshError (the failed
 /// rules, with places) when the mesh is not valid, and InternalError when a stage fails.
