@@ -1,8 +1,11 @@
-// laytracks check-loops PART.json [--size W] [--json OUT.json] [--chord-tol T] [--quiet]
+// laytracks check-loops PART.json [--size W | --adaptive ...] [--json OUT.json] [--chord-tol T]
+//                       [--quiet]
 #include <chrono>
 #include <cstdio>
 #include <iostream>
 #include <map>
+#include <memory>
+#include <set>
 #include <nlohmann/json.hpp>
 
 #include "args.hpp"
@@ -13,22 +16,24 @@
 #include "laytracks/io/brep_json.hpp"
 #include "laytracks/medial/part_medial.hpp"
 #include "laytracks/mesher/mesh_part.hpp"
+#include "meshing.hpp"
 
 namespace laytracks::cli {
 
 const char* const kCheckLoopsHelp =
-    "usage: laytracks check-loops PART.json [--size W] [--json OUT.json] [--chord-tol T] "
-    "[--quiet]\n"
+    "usage: laytracks check-loops PART.json [--size W | --adaptive [--dtheta DEG]\n"
+    "                             [--min-size S] [--max-size S]] [--json OUT.json]\n"
+    "                             [--chord-tol T] [--quiet]\n"
     "\n"
     "Lays the rails (from the branch points' touching points, then the track rails of every\n"
-    "corridor at width W) and reports every rail chain and how it ends: loop, free-edge,\n"
+    "corridor at width W, or adaptively as `laytracks mesh` would) and reports every rail chain and how it ends: loop, free-edge,\n"
     "concave-vertex, branch-point, junction (an edge of 3 or more patches), convex-vertex.\n"
     "On a closed shell without concave vertices every rail that passes no branch point must\n"
     "close, within 1e-9 x the part's size. Exit status 3 when a rail ends where the geometry\n"
     "does not allow it, a loop does not close, or the cut graph fails its validator.\n"
     "\n"
-    "  --size W        track width (default: the part's mesh.size, else 1/40 of the part's size,\n"
-    "                  twice the largest distance of a vertex from their centroid)\n"
+    "  --size W, --uniform, --adaptive, --dtheta, --min-size, --max-size\n"
+    "                  the tracks, as for `laytracks mesh` (laytracks help mesh)\n"
     "  --json OUT.json "
     "{\"rails\":[{\"id\",\"start\",\"end\",\"closure_gap\",\"patches\"}],\"loops\",\n"
     "                  \"max_closure_gap\",\"ok\",...}\n"
@@ -39,16 +44,18 @@ const char* const kCheckLoopsHelp =
 constexpr double kMaxClosureGapRel = 1e-9;
 
 int run_check_loops(const std::vector<std::string>& argv) {
-  const Args args(argv, {"--json", "--size", "--chord-tol"}, {"--quiet"});
+  std::set<std::string> with_value = meshing_value_options();
+  with_value.insert("--json");
+  std::set<std::string> flags = meshing_flags();
+  flags.insert("--quiet");
+  const Args args(argv, with_value, flags);
   if (args.positional().size() != 1) throw UsageError("check-loops needs exactly one PART.json");
   const auto t0 = std::chrono::steady_clock::now();
-  BuildOptions build_options;
-  build_options.chord_tol = args.positive_number("--chord-tol");
-  const Part part = build_part(read_brep_json(args.positional()[0]), build_options);
+  const MeshingOptions meshing = meshing_options(args);
+  const Part part = read_part(args.positional()[0], meshing.build);
   const std::vector<MedialAxis> axes = compute_medial_axes(part);
-  CutGraphOptions options;
-  options.track_width =
-      args.positive_number("--size").value_or(part.mesh.size.value_or(default_element_size(part)));
+  std::unique_ptr<TrackWidthLaw> law;
+  const CutGraphOptions options = cut_graph_options(part, axes, meshing.mesh, law);
   const CutGraph graph = build_cut_graph(part, axes, options);
   const std::vector<std::string> problems = validate_cut_graph(part, axes, graph);
   const double seconds =
@@ -84,7 +91,8 @@ int run_check_loops(const std::vector<std::string>& argv) {
   doc["loops"] = loops;
   doc["max_closure_gap"] = max_gap;
   doc["ok"] = ok;
-  doc["track_width"] = options.track_width;
+  doc["mode"] = law ? "adaptive" : "uniform";
+  doc["track_width"] = law ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(options.track_width);
   doc["rail_points"] = graph.gverts.size();
   doc["corridors"] = graph.corridor_count;
   doc["tracks"] = graph.track_count;
@@ -95,8 +103,15 @@ int run_check_loops(const std::vector<std::string>& argv) {
     write_file_atomically(*path, [&](std::ostream& o) { o << doc.dump(1) << '\n'; });
   }
   if (!args.flag("--quiet")) {
-    std::printf("%zu rail chains (%zu loops) through %zu rail points, track width %.6g, %.3f s\n",
-                graph.chains.size(), loops, graph.gverts.size(), options.track_width, seconds);
+    char tracks[96];
+    if (law) {
+      std::snprintf(tracks, sizeof tracks, "adaptive tracks (dtheta %.3g deg)",
+                    law->options().dtheta * 180.0 / kPi);
+    } else {
+      std::snprintf(tracks, sizeof tracks, "track width %.6g", options.track_width);
+    }
+    std::printf("%zu rail chains (%zu loops) through %zu rail points, %s, %.3f s\n",
+                graph.chains.size(), loops, graph.gverts.size(), tracks, seconds);
     std::printf(
         "%zu corridors, %zu tracks; %zu source rails deleted for narrow corridors, %zu "
         "narrow corridors kept (small features)\n",

@@ -19,9 +19,12 @@ namespace {
 constexpr int kMaxProbeSteps = 16;
 /// Parameter step for the numerical gradient of the radius along an MA edge.
 constexpr double kGradientStep = 1e-4;
-/// An MA point this close (in parameter) to an end of its edge is at that vertex: at a branch
-/// point the probe stops, as a rail does.
+/// An MA point this close (in parameter, or within kSamePointRel x the part's size) to an end
+/// of its edge is at that vertex, as for rails: at a branch point the probe stops.
 constexpr double kAtEndT = 1e-9;
+/// The probe reads the radius at least this far (parameter) inside a boundary segment.
+constexpr double kCornerInset = 1e-6;
+constexpr double kSamePointRel = 1e-7;
 
 }  // namespace
 
@@ -32,18 +35,31 @@ struct TrackWidthLaw::Impl {
 
   Impl(const Part& p, const std::vector<MedialAxis>& a) : part(p), axes(a), index(p) {}
 
-  /// |dR/ds| along the axis at m: exact for a line (R is linear in arc length), a central
-  /// difference for a parabola. 0 where the axis is a single point.
-  double gradient(PatchId p, const MaPoint& m) const {
-    if (!m.edge.valid()) return 0.0;
+  /// |dR/ds| along edge e at parameter t: exact for a line (R is linear in arc length), a
+  /// difference over a short step for a parabola.
+  double edge_gradient(PatchId p, MaEdgeId e, double t) const {
     const MedialAxis& ma = axes[p.index()];
-    const double t0 = std::max(0.0, m.t - kGradientStep);
-    const double t1 = std::min(1.0, m.t + kGradientStep);
-    const MaPoint a = ma.point_on_edge(m.edge, t0);
-    const MaPoint b = ma.point_on_edge(m.edge, t1);
+    const MaPoint a = ma.point_on_edge(e, std::max(0.0, t - kGradientStep));
+    const MaPoint b = ma.point_on_edge(e, std::min(1.0, t + kGradientStep));
     const double ds = distance(a.position, b.position);
     if (!(ds > 0.0)) return 0.0;
     return std::min(1.0, std::abs(b.radius - a.radius) / ds);
+  }
+
+  /// |dR/ds| along the axis at m. At an MA vertex (a branch point, where a source rail's foot
+  /// projects), the mean over its edges: which edge `project` names there is rounding.
+  double gradient(PatchId p, const MaPoint& m) const {
+    if (!m.edge.valid()) return 0.0;
+    const MedialAxis& ma = axes[p.index()];
+    const MaEdge& e = ma.edge(m.edge);
+    const double tol = kSamePointRel * part.size;
+    for (const MaVertexId v : {e.a, e.b}) {
+      if (distance(m.position, ma.vertex(v).position) > tol) continue;
+      double sum = 0.0;
+      for (const MaEdgeId f : ma.incident(v)) sum += edge_gradient(p, f, ma.edge(f).a == v ? 0.0 : 1.0);
+      return sum / static_cast<double>(ma.incident(v).size());
+    }
+    return edge_gradient(p, m.edge, m.t);
   }
 
   BoundaryPoint point_on(const cutgraph_detail::SegmentRef& r, double t) const {
@@ -90,8 +106,15 @@ RadiusSample TrackWidthLaw::radius(PatchId p, const BoundaryPoint& bp) const {
   add_images(p, bp);
   int steps = 0;
   while (!queue.empty() && steps < kMaxProbeSteps) {
-    const auto [q, b] = queue.front();
+    auto [q, b] = queue.front();
     queue.pop_front();
+    // At a corner itself, which disk the point belongs to is decided by rounding: read the
+    // radius just inside the segment.
+    if (b.s < kCornerInset || b.s > 1.0 - kCornerInset) {
+      const auto& loop = im.part.patches[q.index()].polygon.loops[b.site.loop];
+      b.s = std::clamp(b.s, kCornerInset, 1.0 - kCornerInset);
+      b.position = lerp(loop[b.site.index], loop[(b.site.index + 1) % loop.size()], b.s);
+    }
     const auto key = std::make_tuple(q.value, b.site.loop,
                                      std::llround((b.site.index + b.s) * 1e6));
     if (!seen.insert(key).second) continue;
@@ -104,8 +127,12 @@ RadiusSample TrackWidthLaw::radius(PatchId p, const BoundaryPoint& bp) const {
     ++out.patches;
     if (!m->edge.valid()) continue;
     const MaEdge& e = ma.edge(m->edge);
-    const bool at_branch = (m->t <= kAtEndT && ma.vertex(e.a).degree >= 3) ||
-                           (m->t >= 1.0 - kAtEndT && ma.vertex(e.b).degree >= 3);
+    const double tol = kSamePointRel * im.part.size;
+    const auto at = [&](MaVertexId v, bool end) {
+      return ma.vertex(v).degree >= 3 &&
+             (end || distance(m->position, ma.vertex(v).position) <= tol);
+    };
+    const bool at_branch = at(e.a, m->t <= kAtEndT) || at(e.b, m->t >= 1.0 - kAtEndT);
     if (at_branch) continue;
     const Side other = e.left == b.site ? Side::Right : Side::Left;
     const BoundaryPoint target = ma.touching_point(*m, other);

@@ -306,9 +306,14 @@ std::vector<std::size_t> masters(const Corridors& corridors) {
 /// Two widths this close (relative) are equal: both ends of the corridor step together.
 constexpr double kSameWidthRel = 1e-6;
 
+/// The width law is read this far (relative to the CUT-SEG's length) inside a CUT-SEG's ends:
+/// at a corner itself, which side's disk a point belongs to is decided by rounding.
+constexpr double kEndInset = 1e-6;
+
 /// Delta S at arc length x along CUT-SEG cs, from the width law.
 double width_at(const Part& part, const TrackWidthLaw& law, const CutSeg& cs, double x) {
-  return law.width(cs.patch, point_at_length(part, cs, x));
+  const double inset = kEndInset * cs.length;
+  return law.width(cs.patch, point_at_length(part, cs, std::clamp(x, inset, cs.length - inset)));
 }
 
 }  // namespace

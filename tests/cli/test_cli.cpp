@@ -250,3 +250,69 @@ TEST_CASE("mesh refuses what it cannot mesh, writes nothing, and says where", "[
   CHECK_FALSE(fs::exists(d / "x.stl"));
   CHECK(std::distance(fs::directory_iterator(d), fs::directory_iterator()) == 1);
 }
+
+TEST_CASE("mesh --adaptive: the mode from the part or the command line, its report, and its "
+          "mistakes", "[cli][adaptive]") {
+  const fs::path d = fresh_dir("adaptive");
+  // star_5 says mesh.mode "adaptive", dtheta_deg 12: the default; --uniform and --size win.
+  const std::string star = q(laytracks::test::cases_dir() + "/star_5.json");
+  const Run own = run("mesh " + star + " -o " + q(d / "a.msh") + " --report " + q(d / "a.json"));
+  INFO(own.err);
+  REQUIRE(own.status == 0);
+  CHECK_THAT(own.out, Catch::Contains("worst neighbour ratio"));
+  const auto a = nlohmann::json::parse(slurp(d / "a.json"));
+  CHECK(a["mode"] == "adaptive");
+  CHECK(a["dtheta_deg"].get<double>() == 12.0);
+  CHECK(a["quality"]["size"]["worst_neighbour_ratio"].get<double>() >= 1.0);
+  CHECK(a["quality"]["size"]["max"].get<double>() > 4.0 * a["quality"]["size"]["min"].get<double>());
+  for (const std::string& how : {std::string("--uniform"), std::string("--size 1.5")}) {
+    CAPTURE(how);
+    const Run u = run("mesh " + star + " -o " + q(d / "u.msh") + " " + how + " --report " +
+                      q(d / "u.json"));
+    REQUIRE(u.status == 0);
+    const auto uj = nlohmann::json::parse(slurp(d / "u.json"));
+    CHECK(uj["mode"] == "uniform");
+    CHECK(uj["quads"].get<int>() != a["quads"].get<int>());
+  }
+  // A uniform part made adaptive on the command line, and a finer dtheta giving more quads.
+  const std::string plate = q(laytracks::test::cases_dir() + "/plate_with_hole.json");
+  int previous = 0;
+  for (const char* dtheta : {"20", "10"}) {
+    const Run r = run("mesh " + plate + " -o " + q(d / "p.vtu") + " --adaptive --dtheta " +
+                      dtheta + " --report " + q(d / "p.json"));
+    REQUIRE(r.status == 0);
+    const auto pj = nlohmann::json::parse(slurp(d / "p.json"));
+    CHECK(pj["mode"] == "adaptive");
+    CHECK(pj["quads"].get<int>() > previous);
+    previous = pj["quads"].get<int>();
+  }
+  struct Case {
+    std::string args;
+    std::string message;
+  };
+  for (const Case& c :
+       {Case{"--adaptive --size 2", "--size is the element size of uniform mode"},
+        Case{"--adaptive --uniform", "choose one mode"},
+        Case{"--uniform --dtheta 10", "are for adaptive mode"},
+        Case{"--adaptive --dtheta 95", "--dtheta must be below 90 degrees"},
+        Case{"--adaptive --min-size 2 --max-size 1", "is larger than --max-size"},
+        Case{"--adaptive --dtheta -3", "--dtheta needs a positive number"}}) {
+    CAPTURE(c.args);
+    const Run r = run("mesh " + plate + " -o " + q(d / "bad.msh") + " " + c.args);
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Catch::Contains(c.message));
+    CHECK(!fs::exists(d / "bad.msh"));
+  }
+  // batch and draw take the same options.
+  const Run b = run("batch " + plate + " " + star + " -o " + q(d / "batch") +
+                    " --adaptive --dtheta 15 --quiet");
+  REQUIRE(b.status == 0);
+  const auto bj = nlohmann::json::parse(slurp(d / "batch" / "batch-report.json"));
+  for (const auto& p : bj["parts"]) {
+    CHECK(p["mode"] == "adaptive");
+    CHECK(p["worst_neighbour_size_ratio"].get<double>() >= 1.0);
+  }
+  const Run drawn = run("draw " + plate + " --stage tracks --adaptive -o " + q(d / "t.svg"));
+  CHECK(drawn.status == 0);
+  CHECK(fs::exists(d / "t.svg"));
+}
