@@ -770,6 +770,8 @@ void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations) {
     }
     const std::vector<Vec2> before = pos;
     smooth_nodes(pos, fix, quads, iterations);
+    // Then the corners' angles, against the edge lengths the Laplacian sweeps left.
+    optimize_nodes(pos, fix, quads, iterations);
     // Then each node still in a quad below kAcceptJacobian moves to raise its worst quad.
     untangle_nodes(pos, fix, quads, iterations);
     for (std::size_t i = 0; i < global.size(); ++i)
