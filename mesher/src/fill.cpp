@@ -1172,7 +1172,6 @@ void untangle_nodes(std::vector<Vec2>& pos,
   }
 }
 
-
 void optimize_nodes(std::vector<Vec2>& pos,
                     const std::vector<bool>& fixed,
                     const std::vector<std::array<std::uint32_t, 4>>& quads,
