@@ -47,6 +47,11 @@ constexpr double kMinFanAngle = 10.0 * kPi / 180.0;
 /// Adaptive mode: the track widths beside a rail's foot count in Eq. (2) within this factor
 /// of the width law's there.
 constexpr double kFootWidthBound = 2.0;
+/// The same at an MA point, for two rails whose feet are closer than kMaxWedgeFeet x h: the
+/// wedge between them is less than half an element wide, its apex quad as thin as its angle
+/// (15 degrees: cgal_complex_1 0.18 -> 0.34 against 10 degrees; taken alone, 10 gave 0.18).
+constexpr double kMinWedgeAngle = 15.0 * kPi / 180.0;
+constexpr double kMaxWedgeFeet = 0.5;
 /// Two MA points of a patch closer than this x the part size are one node.
 constexpr double kSamePointRel = 1e-9;
 
@@ -377,7 +382,8 @@ class QuadBuilder {
       r.count = edges_for(len);
       g.edges.push_back(r);
     }
-    drop_narrow_fans(g);
+    drop_narrow_fans(g, false);
+    drop_narrow_fans(g, true);
     drop_dangling_rails(g);
     if (law_) adaptive_rail_counts(pid, g);
     trace_faces(pid, g);
@@ -397,26 +403,40 @@ class QuadBuilder {
   /// Two rails leaving one boundary node (a concave corner's fan) less than kMinFanAngle apart
   /// bound a sliver no quad fits well: of the closest pair of neighbouring rails, the longer is
   /// dropped, and again until no pair is that close (its MA end may then dangle, and the rest
-  /// of its chain goes with it). Angles and lengths choose, never the order of the rails, so
-  /// that every pose drops the same rails.
-  void drop_narrow_fans(PatchGraph& g) {
-    std::map<std::uint32_t, std::vector<std::uint32_t>> at;  // boundary node -> its rails
+  /// of its chain goes with it). The same at an MA point (`at_ma`: a branch point whose
+  /// touching points lie close together, or the centre of a finely cut arc), where rails as
+  /// long as each other (the radius) leave the one whose loss leaves the smaller angle to its
+  /// other neighbour. Angles and lengths choose, never the order of the rails, so that every
+  /// pose drops the same rails.
+  void drop_narrow_fans(PatchGraph& g, bool at_ma) {
+    std::map<std::uint32_t, std::vector<std::uint32_t>> at;  // node -> its rails
     for (std::uint32_t e = 0; e < g.edges.size(); ++e)
-      if (g.edges[e].rail) at[g.edges[e].a].push_back(e);
+      if (g.edges[e].rail) at[at_ma ? g.edges[e].b : g.edges[e].a].push_back(e);
+    const double tol = kSamePointRel * part_.size;
     std::vector<bool> drop(g.edges.size(), false);
     for (auto& [node, rails] : at) {
       const Vec2 o = g.nodes[node].p;
-      auto dir = [&](std::uint32_t e) { return g.nodes[g.edges[e].b].p - o; };
+      auto dir = [&](std::uint32_t e) {
+        return g.nodes[at_ma ? g.edges[e].a : g.edges[e].b].p - o;
+      };
       std::sort(rails.begin(), rails.end(), [&](std::uint32_t x, std::uint32_t y) {
         const Vec2 u = dir(x), v = dir(y);
         return std::atan2(u.y, u.x) < std::atan2(v.y, v.x);
       });
+      auto gap = [&](std::size_t k) {  // angle from rail k to the next counter-clockwise
+        const Vec2 u = dir(rails[k]), v = dir(rails[(k + 1) % rails.size()]);
+        return std::abs(std::atan2(cross(u, v), dot(u, v)));
+      };
       while (rails.size() >= 2) {
-        double closest = kMinFanAngle;
+        double closest = at_ma ? kMinWedgeAngle : kMinFanAngle;
         std::size_t pick = rails.size();
         for (std::size_t k = 0; k < rails.size(); ++k) {
-          const Vec2 u = dir(rails[k]), v = dir(rails[(k + 1) % rails.size()]);
-          const double angle = std::abs(std::atan2(cross(u, v), dot(u, v)));
+          const double angle = gap(k);
+          // At an MA point only a wedge whose feet are closer than kMaxWedgeFeet x h: a wider
+          // one holds quads of its own, and merging it made long fans (cgal_wiggly_03_cgal).
+          if (at_ma && distance(dir(rails[k]), dir(rails[(k + 1) % rails.size()])) >
+                           kMaxWedgeFeet * h_)
+            continue;
           if (angle < closest) {
             closest = angle;
             pick = k;
@@ -424,8 +444,13 @@ class QuadBuilder {
         }
         if (pick == rails.size()) break;
         const std::size_t other = (pick + 1) % rails.size();
-        const std::size_t gone =
-            norm(dir(rails[pick])) >= norm(dir(rails[other])) ? pick : other;
+        const double lp = norm(dir(rails[pick])), lo = norm(dir(rails[other]));
+        std::size_t gone = lp >= lo ? pick : other;
+        if (at_ma && std::abs(lp - lo) <= tol && rails.size() >= 3) {
+          const double before = gap((pick + rails.size() - 1) % rails.size());
+          const double after = gap(other);
+          gone = before <= after ? pick : other;
+        }
         drop[rails[gone]] = true;
         ++result_.stats.narrow_fans;
         rails.erase(rails.begin() + static_cast<std::ptrdiff_t>(gone));
@@ -845,6 +870,8 @@ void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations) {
     }
     const std::vector<Vec2> before = pos;
     smooth_nodes(pos, fix, quads, iterations);
+    // Then the corners' angles, against the edge lengths the Laplacian sweeps left.
+    optimize_nodes(pos, fix, quads, iterations);
     // Then each node still in a quad below kAcceptJacobian moves to raise its worst quad.
     untangle_nodes(pos, fix, quads, iterations);
     for (std::size_t i = 0; i < global.size(); ++i)

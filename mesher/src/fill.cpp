@@ -1119,8 +1119,6 @@ void untangle_nodes(std::vector<Vec2>& pos,
     bool moved = false;
     for (std::uint32_t v = 0; v < n; ++v) {
       if (fixed[v] || around[v].empty()) continue;
-      double current = worst_at(v);
-      if (current >= kAcceptJacobian) continue;
       // Step: a quarter of the shortest edge at v.
       double step = std::numeric_limits<double>::infinity();
       for (std::uint32_t q : around[v])
@@ -1129,6 +1127,8 @@ void untangle_nodes(std::vector<Vec2>& pos,
             step = std::min(step, distance(pos[v], pos[quads[q][(k + 1) % 4]]));
             step = std::min(step, distance(pos[v], pos[quads[q][(k + 3) % 4]]));
           }
+      double current = worst_at(v);
+      if (current >= kAcceptJacobian) continue;
       step *= 0.25;
       Vec2 ref{1.0, 0.0};
       for (std::size_t k = 0; k < 4; ++k)
@@ -1162,6 +1162,105 @@ void untangle_nodes(std::vector<Vec2>& pos,
           }
         }
       }
+    }
+    if (!moved) break;
+  }
+}
+
+void optimize_nodes(std::vector<Vec2>& pos,
+                    const std::vector<bool>& fixed,
+                    const std::vector<std::array<std::uint32_t, 4>>& quads,
+                    int iterations) {
+  const std::size_t n = pos.size();
+  // The corners whose triangle moves with node v: in every quad round v, the corner at v and
+  // its two neighbours.
+  struct Corner {
+    std::uint32_t q;
+    std::size_t k;
+  };
+  std::vector<std::vector<Corner>> corners(n);
+  std::vector<std::vector<std::uint32_t>> around(n);
+  for (std::uint32_t q = 0; q < quads.size(); ++q)
+    for (std::size_t k = 0; k < 4; ++k) {
+      const std::uint32_t v = quads[q][k];
+      around[v].push_back(q);
+      for (std::size_t d : {0u, 1u, 3u}) corners[v].push_back({q, (k + d) % 4});
+    }
+  // Target lengths: every edge as long as it is now. Measured against them, a corner's ideal
+  // is a right angle between edges of their present lengths, so a graded or stretched mesh
+  // keeps its sizes and only the angles improve (against a unit square instead, the plate's
+  // ring round its hole was skewed to even its edges: min scaled Jacobian 0.78 -> 0.65).
+  std::vector<std::array<double, 4>> target(quads.size());  // edge k: from corner k to k + 1
+  for (std::size_t q = 0; q < quads.size(); ++q)
+    for (std::size_t k = 0; k < 4; ++k)
+      target[q][k] = distance(pos[quads[q][k]], pos[quads[q][(k + 1) % 4]]);
+  auto jac = [&](std::uint32_t q) {
+    const auto& x = quads[q];
+    return min_scaled_jacobian(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]);
+  };
+  // The objective at v: the sum of the condition numbers (|a|^2 + |b|^2) / (2 a x b) of the
+  // corners it is part of, a and b the corner's edges over their target lengths (1 for the
+  // ideal corner, infinite as it flattens). Each term is a quadratic over a positive affine
+  // function of v, so the sum is convex where it is finite and one Newton step goes most of
+  // the way; gradient and Hessian need no frame, so every pose moves the same.
+  auto objective = [&](std::uint32_t v, Vec2* grad, double* hess) {
+    double f = 0.0;
+    if (grad) *grad = {0.0, 0.0};
+    if (hess) hess[0] = hess[1] = hess[2] = 0.0;
+    for (const Corner& c : corners[v]) {
+      const auto& x = quads[c.q];
+      const std::uint32_t p = x[c.k], nx = x[(c.k + 1) % 4], pv = x[(c.k + 3) % 4];
+      const double wa = 1.0 / target[c.q][c.k], wb = 1.0 / target[c.q][(c.k + 3) % 4];
+      const Vec2 a = wa * (pos[nx] - pos[p]), b = wb * (pos[pv] - pos[p]);
+      const double d = cross(a, b);
+      if (!(d > 0.0)) return std::numeric_limits<double>::infinity();
+      const double num = dot(a, a) + dot(b, b);
+      f += 0.5 * num / d;
+      if (!grad) continue;
+      // a and b move with v at rates sa, sb (+-their weights, or 0); d is affine in v.
+      const double sa = wa * (v == p ? -1.0 : v == nx ? 1.0 : 0.0);
+      const double sb = wb * (v == p ? -1.0 : v == pv ? 1.0 : 0.0);
+      const Vec2 gn = 2.0 * (sa * a + sb * b);
+      const Vec2 gd = sa * Vec2{b.y, -b.x} + sb * Vec2{-a.y, a.x};
+      *grad = *grad + (0.5 / (d * d)) * (d * gn - num * gd);
+      // H = hn / (2d) I - (gn gd' + gd gn') / (2d^2) + num gd gd' / d^3
+      const double hn = 2.0 * (sa * sa + sb * sb);
+      const double i2 = 0.5 / (d * d), i3 = num / (d * d * d);
+      hess[0] += 0.5 * hn / d - 2.0 * i2 * gn.x * gd.x + i3 * gd.x * gd.x;
+      hess[1] += -i2 * (gn.x * gd.y + gd.x * gn.y) + i3 * gd.x * gd.y;
+      hess[2] += 0.5 * hn / d - 2.0 * i2 * gn.y * gd.y + i3 * gd.y * gd.y;
+    }
+    return f;
+  };
+  for (int it = 0; it < iterations; ++it) {
+    bool moved = false;
+    for (std::uint32_t v = 0; v < n; ++v) {
+      if (fixed[v] || around[v].empty()) continue;
+      Vec2 g;
+      double h[3];
+      const double f0 = objective(v, &g, h);
+      if (!std::isfinite(f0)) continue;  // an inverted corner: the untangler's work
+      const double det = h[0] * h[2] - h[1] * h[1];
+      if (!(det > 0.0) || !(h[0] > 0.0)) continue;
+      const Vec2 step{-(h[2] * g.x - h[1] * g.y) / det, -(h[0] * g.y - h[1] * g.x) / det};
+      // The Newton decrement -g.step / 2 is the decrease the step promises (dimensionless, the
+      // same in every pose and at every scale): below kOptimizeTolerance the node stays.
+      if (-0.5 * dot(g, step) < kOptimizeTolerance) continue;
+      double before = std::numeric_limits<double>::infinity();
+      for (std::uint32_t q : around[v]) before = std::min(before, jac(q));
+      const Vec2 old = pos[v];
+      bool kept = false;
+      // Halve the step until the objective falls and no quad round v goes below the floor.
+      for (double t = 1.0; t > 1e-3 && !kept; t *= 0.5) {
+        pos[v] = old + t * step;
+        if (pos[v] == old) break;
+        if (!(objective(v, nullptr, nullptr) < f0)) continue;
+        double after = std::numeric_limits<double>::infinity();
+        for (std::uint32_t q : around[v]) after = std::min(after, jac(q));
+        kept = after >= std::min(before, kSmoothFloor);
+      }
+      if (kept) moved = true;
+      else pos[v] = old;
     }
     if (!moved) break;
   }

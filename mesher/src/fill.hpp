@@ -72,12 +72,25 @@ void smooth_nodes(std::vector<Vec2>& pos,
 
 constexpr double kSmoothFloor = 0.2;
 
+/// Moves each interior node by Newton steps on the sum of the condition numbers of the quad
+/// corners it belongs to, edges measured against their lengths before the sweeps (convex in
+/// the node: only the angles are improved, sizes stay), at most `iterations` sweeps. A step is
+/// halved until the sum falls and no quad round the node goes below min(its worst before,
+/// kSmoothFloor), so no element is ever inverted. `fixed` says which nodes stay.
+void optimize_nodes(std::vector<Vec2>& pos,
+                    const std::vector<bool>& fixed,
+                    const std::vector<std::array<std::uint32_t, 4>>& quads,
+                    int iterations);
+
 /// Moves each interior node whose worst quad is below kAcceptJacobian by a compass search that
 /// raises the smallest scaled Jacobian of the quads around it (it untangles inverted quads).
 void untangle_nodes(std::vector<Vec2>& pos,
                     const std::vector<bool>& fixed,
                     const std::vector<std::array<std::uint32_t, 4>>& quads,
                     int iterations);
+
+/// A node whose Newton step promises less decrease of its objective than this stays.
+constexpr double kOptimizeTolerance = 1e-4;
 
 /// The untangler keeps every edge at a node at least this x their mean length before it.
 constexpr double kMinEdgeFraction = 0.2;
