@@ -83,6 +83,7 @@ struct Row {
   double size = 0.0;  ///< uniform: the element size; adaptive: MIN_END_WIDTH
   bool adaptive = false;
   double neighbour_ratio = 1.0;  ///< the worst size ratio of two neighbouring quads
+  double fine_coarse = 1.0;      ///< mean size of the finest tenth over the coarsest tenth
   std::size_t quads = 0;
   std::size_t nodes = 0;
   double min_jacobian = 0.0;
@@ -254,6 +255,7 @@ Row run_job(const Job& job, const MeshingOptions& options, const fs::path& out) 
     row.size = r.size;
     row.adaptive = r.adaptive;
     row.neighbour_ratio = r.quality.worst_neighbour_ratio;
+    row.fine_coarse = r.quality.fine_coarse_ratio;
     row.quads = r.quality.quads;
     row.nodes = r.quality.nodes;
     const auto& m = r.quality.measures;
@@ -429,6 +431,7 @@ void write_report(const fs::path& path,
       p["aspect_bad_percent"] = r.aspect_bad;
       p["taper_bad_percent"] = r.taper_bad;
       p["worst_neighbour_size_ratio"] = r.neighbour_ratio;
+      p["fine_coarse_size_ratio"] = r.fine_coarse;
       p["error"] = nullptr;
     } else {
       (r.status == kInputRefused ? refused : failed) += 1;

@@ -128,8 +128,10 @@ int run_mesh(const std::vector<std::string>& argv) {
     std::string grading;
     if (r.adaptive) {
       char buf[160];
-      std::snprintf(buf, sizeof buf, "sizes %.3g to %.3g, worst neighbour ratio %.2f, ",
-                    r.quality.min_size, r.quality.max_size, r.quality.worst_neighbour_ratio);
+      std::snprintf(buf, sizeof buf,
+                    "sizes %.3g to %.3g (finest/coarsest tenth %.2f), worst neighbour ratio %.2f, ",
+                    r.quality.min_size, r.quality.max_size, r.quality.fine_coarse_ratio,
+                    r.quality.worst_neighbour_ratio);
       grading = buf;
     }
     std::printf(

@@ -52,6 +52,9 @@ constexpr double kFootWidthBound = 2.0;
 /// (15 degrees: cgal_complex_1 0.18 -> 0.34 against 10 degrees; taken alone, 10 gave 0.18).
 constexpr double kMinWedgeAngle = 15.0 * kPi / 180.0;
 constexpr double kMaxWedgeFeet = 0.5;
+/// Two MA points of a patch closer than this x h (in adaptive mode h is MIN_END_WIDTH, the
+/// finest track) are one node.
+constexpr double kMergeMaPoints = 1e-3;
 /// Two MA points of a patch closer than this x the part size are one node.
 constexpr double kSamePointRel = 1e-9;
 
@@ -363,8 +366,18 @@ class QuadBuilder {
       if (mit != by_macut.end()) {
         b = mit->second;
       } else {
-        for (std::uint32_t m : ma_nodes)
-          if (distance(g.nodes[m].p, mc.point.position) <= tol) b = m;
+        // The nearest MA node within kMergeMaPoints x h is this one: where many branches of the
+        // axis meet nearly at one point (the centre of a polygonised hub), the axis has several
+        // vertices microns apart, and the faces between them would have to hold specks.
+        const double ma_tol = std::max(tol, kMergeMaPoints * h_);
+        double nearest = ma_tol;
+        for (std::uint32_t m : ma_nodes) {
+          const double d = distance(g.nodes[m].p, mc.point.position);
+          if (d <= nearest) {
+            nearest = d;
+            b = m;
+          }
+        }
         if (b == kNone) {
           b = static_cast<std::uint32_t>(g.nodes.size());
           g.nodes.push_back({mc.point.position, kNone, true});

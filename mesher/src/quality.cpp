@@ -252,6 +252,19 @@ QualitySummary summarize(const Part& part, const QuadMesh& mesh) {
   }
   for (std::size_t m = 0; m < 8; ++m)
     out.measures[m] = summarize_measure(measure_defs()[m], values[m]);
+  std::vector<double> sizes;
+  for (std::size_t ei = 0; ei < mesh.elements.size(); ++ei)
+    if (size_of[ei] > 0.0) sizes.push_back(size_of[ei]);
+  if (!sizes.empty()) {
+    std::sort(sizes.begin(), sizes.end());
+    const std::size_t tenth = std::max<std::size_t>(1, sizes.size() / 10);
+    double fine = 0.0, coarse = 0.0;
+    for (std::size_t k = 0; k < tenth; ++k) {
+      fine += sizes[k];
+      coarse += sizes[sizes.size() - 1 - k];
+    }
+    out.fine_coarse_ratio = fine / coarse;
+  }
   std::sort(edge_use.begin(), edge_use.end());
   std::vector<double> ratios;
   for (std::size_t i = 0; i + 1 < edge_use.size(); ++i) {
@@ -283,6 +296,7 @@ void write_quality_json(std::ostream& out, const QualitySummary& summary, bool h
   j["bad_angle_percent"] = summary.bad_angle_percent;
   j["size"] = {{"min", summary.min_size},
                {"max", summary.max_size},
+               {"fine_coarse_ratio", summary.fine_coarse_ratio},
                {"worst_neighbour_ratio", summary.worst_neighbour_ratio},
                {"p95_neighbour_ratio", summary.p95_neighbour_ratio}};
   json measures = json::object();

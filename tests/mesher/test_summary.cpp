@@ -40,6 +40,10 @@ TEST_CASE("the size grading is the worst size ratio of two quads sharing an edge
   CHECK(s.max_size == Approx(std::sqrt(0.025 * 39 * 0.5)));
   CHECK(s.worst_neighbour_ratio == Approx(std::sqrt(3.0)));
   CHECK(s.p95_neighbour_ratio < s.worst_neighbour_ratio);
+  // 20 columns of 8 quads: columns 0-1 and 18-19 hold the finest and coarsest tenths (16
+  // quads each), widths 0.025 (1, 3) and 0.025 (37, 39).
+  const auto col = [](int k) { return std::sqrt(0.025 * (2 * k + 1) * 0.5); };
+  CHECK(s.fine_coarse_ratio == Approx((col(0) + col(1)) / (col(18) + col(19))));
   CHECK(s.p95_neighbour_ratio > 1.0);
 }
 
@@ -74,6 +78,7 @@ TEST_CASE("a grid of squares is ideal in every measure", "[summary]") {
   CHECK(s.max_size == Approx(0.5));
   CHECK(s.worst_neighbour_ratio == Approx(1.0));
   CHECK(s.p95_neighbour_ratio == Approx(1.0));
+  CHECK(s.fine_coarse_ratio == Approx(1.0));
   // The ideal values land in the bins that start at them (the scaled Jacobian in the last).
   CHECK(s.measures[0].histogram.counts[0] == 160);
   CHECK(s.measures[4].histogram.counts[18] == 160);  // [90, 95)

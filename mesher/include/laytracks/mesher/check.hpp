@@ -132,6 +132,9 @@ struct QualitySummary {
   /// Element size: the square root of the quad's area (measured quads).
   double min_size = 0.0;
   double max_size = 0.0;
+  /// The mean size of the finest tenth of the quads over that of the coarsest tenth (1 for a
+  /// uniform mesh; small when the mesh grades).
+  double fine_coarse_ratio = 1.0;
   /// Size grading: over every pair of measured quads sharing an edge, the larger size over
   /// the smaller; the worst pair and the 95th percentile (1 with no pair).
   double worst_neighbour_ratio = 1.0;
