@@ -3,9 +3,11 @@
 // quads per second and the quality figures of the final mesh (quality.md), as an aligned table.
 // Not a test: run it by hand in a Release build, or through bench/run-bench.sh.
 //
-//   build/bench/bench_mesh PART.json [--size W ...] [--target-quads N ...] [--smooth N]
+//   build/bench/bench_mesh PART.json [--size W ...] [--target-quads N ...] [--dtheta DEG ...]
+//                          [--smooth N]
 //                          [--repeat K] [--chord-tol T] [--json OUT.json] [--msh DIR] [--quiet]
 //
+// --dtheta takes one or more angles: adaptive mode (docs/adaptive.md) at each.
 // --size takes one or more element sizes (or repeat the flag); --target-quads one or more quad
 // counts, each turned into a size as follows. The quad count of a uniform mesh goes as
 // area / h^2, so h0 = sqrt(area / min(N, 2000)) is meshed first (cheap); while that mesh has
@@ -52,12 +54,13 @@ using namespace laytracks;
 namespace {
 
 const char* const kUsage =
-    "usage: bench_mesh PART.json [--size W ...] [--target-quads N ...] [--smooth N]\n"
+    "usage: bench_mesh PART.json [--size W ...] [--target-quads N ...] [--dtheta DEG ...]\n"
+    "                  [--smooth N]\n"
     "                  [--repeat K] [--chord-tol T] [--json OUT.json] [--msh DIR] [--quiet]\n";
 
 /// What one row asks for: a size, a quad count, or the part's default size.
 struct Request {
-  enum class Kind { Default, Size, Target } kind = Kind::Default;
+  enum class Kind { Default, Size, Target, Dtheta } kind = Kind::Default;
   double value = 0.0;
 };
 
@@ -119,8 +122,10 @@ Options parse(int argc, char** argv) {
       if (i + 1 >= args.size() || is_flag(args[i + 1])) usage_error(a + " needs a value");
       return args[++i];
     };
-    if (a == "--size" || a == "--target-quads") {
-      const Request::Kind kind = a == "--size" ? Request::Kind::Size : Request::Kind::Target;
+    if (a == "--size" || a == "--target-quads" || a == "--dtheta") {
+      const Request::Kind kind = a == "--size"           ? Request::Kind::Size
+                                 : a == "--target-quads" ? Request::Kind::Target
+                                                         : Request::Kind::Dtheta;
       o.requests.push_back({kind, positive(a, value())});
       while (i + 1 < args.size() && !is_flag(args[i + 1])) {
         o.requests.push_back({kind, positive(a, args[++i])});
@@ -159,12 +164,16 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-/// Meshes the part once at `size` (the part's default when nullopt).
-Run mesh_once(const Part& part, std::optional<double> size, int smooth, bool keep_mesh) {
+/// Meshes the part once at `size` (the part's default when nullopt), or in adaptive mode at
+/// `dtheta` degrees when that is given.
+Run mesh_once(const Part& part, std::optional<double> size, int smooth, bool keep_mesh,
+              std::optional<double> dtheta = std::nullopt) {
   Run r;
   MeshPartOptions options;
   options.size = size;
   options.smooth = smooth;
+  options.adaptive = dtheta.has_value();
+  options.dtheta_deg = dtheta;
   r.size = size.value_or(part.mesh.size.value_or(default_element_size(part)));
   const auto t0 = std::chrono::steady_clock::now();
   const std::clock_t c0 = std::clock();
@@ -193,10 +202,11 @@ Run mesh_once(const Part& part, std::optional<double> size, int smooth, bool kee
 }
 
 /// The best (smallest total) of `repeat` runs; a refusal is not repeated.
-Run mesh_timed(const Part& part, std::optional<double> size, const Options& o) {
-  Run best = mesh_once(part, size, o.smooth, o.msh_dir.has_value());
+Run mesh_timed(const Part& part, std::optional<double> size, const Options& o,
+               std::optional<double> dtheta = std::nullopt) {
+  Run best = mesh_once(part, size, o.smooth, o.msh_dir.has_value(), dtheta);
   for (int k = 1; k < o.repeat && best.ok; ++k) {
-    Run again = mesh_once(part, size, o.smooth, o.msh_dir.has_value());
+    Run again = mesh_once(part, size, o.smooth, o.msh_dir.has_value(), dtheta);
     if (again.ok && again.total < best.total) best = std::move(again);
   }
   return best;
@@ -318,6 +328,8 @@ int main(int argc, char** argv) {
         row.calibration.push_back(std::move(row.run));
         row.run = mesh_timed(part, h * std::sqrt(quads / req.value), o);
       }
+    } else if (req.kind == Request::Kind::Dtheta) {
+      row.run = mesh_timed(part, std::nullopt, o, req.value);
     } else {
       row.run = mesh_timed(
           part, req.kind == Request::Kind::Size ? std::optional<double>(req.value) : std::nullopt,
@@ -361,6 +373,9 @@ int main(int argc, char** argv) {
           break;
         case Request::Kind::Target:
           req = {{"target_quads", row.request.value}};
+          break;
+        case Request::Kind::Dtheta:
+          req = {{"adaptive_dtheta_deg", row.request.value}};
           break;
       }
       j["request"] = req;

@@ -79,7 +79,11 @@ TrackWidthLaw::TrackWidthLaw(const Part& part,
   if (!(o.dtheta > 0.0)) throw InternalError("adaptive mode: dtheta must be positive");
   for (const MedialAxis& ma : axes)
     for (const MaVertex& v : ma.vertices()) max_radius_ = std::max(max_radius_, v.radius);
-  end_width_ = o.min_size > 0.0 ? o.min_size : kMinEndWidthFraction * max_radius_;
+  // The paper's 3% of the largest radius at the default dtheta, and in proportion to dtheta
+  // (a finer dtheta refines the corners too, instead of stopping at the same floor).
+  end_width_ = o.min_size > 0.0 ? o.min_size
+                                : kMinEndWidthFraction * max_radius_ * o.dtheta /
+                                      (kDefaultDthetaDeg * kPi / 180.0);
   end_width_ = std::min(end_width_, options_.max_size);
   if (!(end_width_ > 0.0)) throw InternalError("adaptive mode: the part has no medial radius");
 }

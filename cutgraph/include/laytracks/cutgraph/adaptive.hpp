@@ -16,7 +16,8 @@ namespace laytracks {
 constexpr double kDefaultDthetaDeg = 15.0;
 /// MAX_ANG_INCR as a fraction of Delta theta_in (the paper's 20%).
 constexpr double kMaxAngIncrFraction = 0.2;
-/// The paper's MIN_END_WIDTH: this fraction of the largest MA radius of the part.
+/// The paper's MIN_END_WIDTH: this fraction of the largest MA radius of the part, at the
+/// default dtheta (in proportion to dtheta otherwise).
 constexpr double kMinEndWidthFraction = 0.03;
 
 struct AdaptiveOptions {
