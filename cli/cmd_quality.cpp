@@ -22,7 +22,8 @@ const char* const kQualityHelp =
     "(mean, worst, p5/p95 and % beyond the thresholds of every measure). Surface entity t of\n"
     "the mesh is patch t-1 of the part. Exit status 5 when the mesh is not valid.\n"
     "\n"
-    "  --json OUT.json  the summary figures, and the failures\n"
+    "  --json OUT.json  the summary figures, then \"valid\", \"failure_counts\" (per rule) and\n"
+    "                   \"failures\": [{rule, message}], at most 20 sentences per rule\n"
     "  --histograms     add the per-measure histograms to the JSON\n"
     "  --chord-tol T    sagitta bound for arcs: use the one the mesh was made with\n"
     "  --quiet          print nothing but errors\n";
@@ -38,7 +39,7 @@ int run_quality(const std::vector<std::string>& argv) {
   const QualitySummary summary = summarize(part, mesh);
   if (const auto path = args.value("--json")) {
     write_file_atomically(
-        *path, [&](std::ostream& o) { write_quality_json(o, summary, args.flag("--histograms")); });
+        *path, [&](std::ostream& o) { write_quality_json(o, summary, check, args.flag("--histograms")); });
   }
   if (!args.flag("--quiet")) {
     std::printf("%zu elements (%zu quads, %zu triangles), %zu nodes, %zu invalid\n",

@@ -2,6 +2,8 @@
 // 1. Boundary: every B-Rep edge is cut at its G-CUT-VERTs into pieces; a piece gets one mesh
 //    edge, or round(length / h) when longer than kSplitPiece x h. Pieces are per B-Rep edge, so
 //    every patch of an edge sees the same nodes (conformity across seams and junctions).
+//    A G-CUT-VERT that no kept rail uses and that lies within kIdleBreakGap x h of the next
+//    break or end of its edge is not a node (no sliver piece beside a B-Rep vertex).
 // 2. Rails: a rail segment (CUT-VERT to MA point) of length R gets max(1, round(R / h)) edges
 //    (Eq. 2-3; both halves of a rail have the same length, so the same count).
 // 3. Faces: each patch, cut by its rails, falls into faces (half-edges traced with the face on
@@ -41,6 +43,12 @@ constexpr double kRoundingSlack = 1e-7;
 /// A G-CUT-VERT within this x the part size of another break of its edge (or of the edge's
 /// end) is that node: ten times above the checker's closest allowed nodes.
 constexpr double kMergeBreakRel = 1e-8;
+/// A G-CUT-VERT that no kept rail uses in any patch of its edge (its rails were dropped as a
+/// narrow fan or wedge, or dangled) is not a node when it lies closer than this x the local
+/// element size to the next break or end of its edge: it would leave a piece as short, and a
+/// quad with a flat corner at the B-Rep vertex beside it (cgal_sample_0: 0.013). Farther ones
+/// stay: merged with their neighbours' pieces, pieces of about h became single edges of 2 h.
+constexpr double kIdleBreakGap = 0.1;
 /// Two rails from one boundary node closer in angle than this are not both kept (10 degrees:
 /// the quad at their tip would have a scaled Jacobian below sin 10 = 0.17).
 constexpr double kMinFanAngle = 10.0 * kPi / 180.0;
@@ -80,6 +88,7 @@ struct CEdge {
   std::uint32_t piece = 0;     ///< boundary: its piece on that edge
   bool forward = true;         ///< boundary: loop direction = unit direction
   std::uint32_t count = 1;     ///< rail: mesh edges
+  std::uint32_t seg = kNone;   ///< rail: its RailSegment in the cut graph
   std::vector<std::uint32_t> inner;  ///< rail: inner nodes from a to b
   std::uint32_t face[2] = {kNone, kNone};  ///< faces on the left of a->b and of b->a
 };
@@ -106,9 +115,55 @@ class QuadBuilder {
   }
 
   QuadResult run() {
-    make_boundary_nodes();
-    patches_.resize(part_.patches.size());
-    for (std::size_t p = 0; p < part_.patches.size(); ++p) build_patch_graph(PatchId(p));
+    // First pass: every G-CUT-VERT is a break; the rails are laid and the narrow-fan,
+    // narrow-wedge and dangling rules drop some. A break that no kept rail uses, in any patch
+    // of its edge, and that lies closer than kIdleBreakGap x h to a neighbouring break or to
+    // the edge's end, only leaves a sliver piece: the second pass lays the nodes without it,
+    // and only the rails the first pass kept (the same in both, so conformity and the rails
+    // of every other patch are untouched).
+    make_boundary_nodes({});
+    const std::size_t np = part_.patches.size();
+    patches_.assign(np, {});
+    for (std::size_t p = 0; p < np; ++p) build_patch_rails(PatchId(p), nullptr);
+    std::vector<bool> kept(graph_.segments.size(), false);
+    std::vector<bool> used_node(result_.mesh.nodes.size(), false);
+    for (const PatchGraph& g : patches_) {
+      for (const CEdge& c : g.edges) {
+        if (!c.rail) continue;
+        kept[c.seg] = true;
+        used_node[g.nodes[c.a].mesh] = true;
+      }
+    }
+    // Per break node: the distance to the nearer of its neighbouring breaks (or the unit's
+    // ends), over the local element size.
+    std::vector<double> gap(result_.mesh.nodes.size(), 0.0);
+    for (std::size_t u = 0; u < edges_.size(); ++u) {
+      const EdgeNodes& en = edges_[u];
+      const double len = unit_length(u);
+      for (std::size_t j = 1; j + 1 < en.node.size(); ++j) {
+        const double near = std::min(en.t[j] - en.t[j - 1], en.t[j + 1] - en.t[j]) * len;
+        gap[en.node[j]] = near / (law_ ? piece_size(u, en.t[j]) : h_);
+      }
+    }
+    std::vector<bool> unused(graph_.gverts.size(), false);
+    bool any = false;
+    for (std::size_t gv = 0; gv < graph_.gverts.size(); ++gv) {
+      const std::uint32_t node = gcut_node_[gv];
+      if (node != kNone && !used_node[node] && !is_vertex_node_[node] &&
+          gap[node] < kIdleBreakGap) {
+        unused[gv] = any = true;
+      }
+    }
+    if (any) {
+      result_.mesh.nodes.clear();
+      make_boundary_nodes(unused);
+      patches_.assign(np, {});
+      for (std::size_t p = 0; p < np; ++p) build_patch_rails(PatchId(p), &kept);
+    }
+    for (std::size_t p = 0; p < np; ++p) {
+      if (law_) adaptive_rail_counts(PatchId(p), patches_[p]);
+      trace_faces(PatchId(p), patches_[p]);
+    }
     fix_parity();
     materialise_pieces();
     for (std::size_t p = 0; p < part_.patches.size(); ++p) fill_patch(PatchId(p));
@@ -122,7 +177,9 @@ class QuadBuilder {
   }
 
   // ---- 1. boundary nodes ----------------------------------------------------------------
-  void make_boundary_nodes() {
+  /// `skip`: G-CUT-VERTs left out (idle breaks: no kept rail, within kIdleBreakGap x h of a
+  /// neighbour), empty for none.
+  void make_boundary_nodes(const std::vector<bool>& skip) {
     // Units: every straight B-Rep edge is one; every arc (all the edges that discretise it) is
     // one, with its nodes on the circle and no node at its discretisation points.
     const std::size_t ne = part_.edges.size();
@@ -175,6 +232,7 @@ class QuadBuilder {
     for (std::size_t g = 0; g < graph_.gverts.size(); ++g) {
       const GCutVert& gv = graph_.gverts[g];
       const auto gid = static_cast<std::uint32_t>(g);
+      if (!skip.empty() && skip[g]) continue;
       if (gv.vertex && !part_.vertices[gv.vertex->index()].from_arc) {
         gcut_node_[g] = vertex_node_[gv.vertex->index()];
         continue;
@@ -195,7 +253,8 @@ class QuadBuilder {
         breaks[unit].push_back({ua + (ub - ua) * gv.t, gid});
       }
     }
-    edges_.resize(units_.size());
+    edges_.assign(units_.size(), {});
+    is_vertex_node_.assign(result_.mesh.nodes.size(), true);
     for (std::size_t e = 0; e < units_.size(); ++e) {
       const Unit& un = units_[e];
       EdgeNodes& en = edges_[e];
@@ -217,6 +276,7 @@ class QuadBuilder {
         }
         en.t.push_back(t);
         en.node.push_back(add_node(unit_point(e, t)));
+        is_vertex_node_.push_back(false);
         gcut_node_[g] = en.node.back();
       }
       en.t.push_back(1.0);
@@ -278,7 +338,10 @@ class QuadBuilder {
   }
 
   // ---- 2-3. the coarse graph and its faces ------------------------------------------------
-  void build_patch_graph(PatchId pid) {
+  /// The patch's boundary pieces and rails. `keep` (per rail segment): lay only these, and
+  /// drop nothing more; without it every rail is laid and the narrow-fan, narrow-wedge and
+  /// dangling rules drop some.
+  void build_patch_rails(PatchId pid, const std::vector<bool>* keep) {
     const Patch& patch = part_.patches[pid.index()];
     PatchGraph& g = patches_[pid.index()];
     std::map<std::uint32_t, std::uint32_t> by_mesh;  // boundary mesh node -> coarse node
@@ -341,9 +404,11 @@ class QuadBuilder {
     std::vector<std::uint32_t> ma_nodes;
     const double tol = kSamePointRel * part_.size;
     std::map<std::pair<std::uint32_t, std::uint32_t>, bool> seen;
-    for (const RailSegment& seg : graph_.segments) {
+    for (std::size_t si = 0; si < graph_.segments.size(); ++si) {
+      const RailSegment& seg = graph_.segments[si];
       const CutVert& cut = graph_.cuts[seg.cut.index()];
       if (cut.patch != pid) continue;
+      if (keep && !(*keep)[si]) continue;
       const MaCutVert& mc = graph_.macuts[seg.ma.index()];
       const auto cit = by_mesh.find(gcut_node_[cut.g.index()]);
       if (cit == by_mesh.end()) {
@@ -391,15 +456,15 @@ class QuadBuilder {
       r.a = a;
       r.b = b;
       r.rail = true;
+      r.seg = static_cast<std::uint32_t>(si);
       const double len = distance(g.nodes[a].p, g.nodes[b].p);
       r.count = edges_for(len);
       g.edges.push_back(r);
     }
+    if (keep) return;
     drop_narrow_fans(g, false);
     drop_narrow_fans(g, true);
     drop_dangling_rails(g);
-    if (law_) adaptive_rail_counts(pid, g);
-    trace_faces(pid, g);
   }
 
   void add_boundary_edge(PatchGraph& g, std::uint32_t a, std::uint32_t b, std::uint32_t e,
@@ -827,6 +892,8 @@ class QuadBuilder {
   std::vector<std::uint32_t> unit_of_edge_;
   std::vector<std::uint32_t> vertex_node_;
   std::vector<std::uint32_t> gcut_node_;
+  /// Per mesh node made by make_boundary_nodes: a B-Rep vertex's (true) or a break's (false).
+  std::vector<bool> is_vertex_node_;
   std::vector<EdgeNodes> edges_;
   std::vector<PatchGraph> patches_;
   const TrackWidthLaw* law_ = nullptr;

@@ -374,6 +374,10 @@ bool inside_polygon(Vec2 x, const std::vector<Vec2>& poly) {
 /// The triangulation of a simple counter-clockwise polygon that maximises the smallest
 /// `score(a, b, c)` of its triangles (dynamic programming over diagonals, O(m^3)). Indices
 /// into `poly`; empty when the polygon has no triangulation with positive triangles.
+/// A split must beat the best so far by more than this to replace it: scores equal but for
+/// rounding (mirror-image triangles, a worst triangle shared by both) keep the first split in
+/// every pose of a part.
+constexpr double kTriangulationTie = 1e-9;
 template <class Score>
 std::vector<std::array<std::uint32_t, 3>> triangulate(const std::vector<Vec2>& poly, Score score) {
   const auto m = static_cast<std::uint32_t>(poly.size());
@@ -415,7 +419,7 @@ std::vector<std::array<std::uint32_t, 3>> triangulate(const std::vector<Vec2>& p
         if (left == kNone || right == kNone) continue;
         if (triangle_shape(poly[i], poly[k], poly[j]) <= 0.0) continue;
         const double v = std::min({left, right, score(i, k, j)});
-        if (v > best[i * m + j]) {
+        if (v > best[i * m + j] + kTriangulationTie) {
           best[i * m + j] = v;
           split[i * m + j] = k;
         }

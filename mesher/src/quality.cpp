@@ -6,6 +6,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <string>
 
 #include "laytracks/mesher/check.hpp"
 
@@ -284,7 +285,9 @@ QualitySummary summarize(const Part& part, const QuadMesh& mesh) {
   return out;
 }
 
-void write_quality_json(std::ostream& out, const QualitySummary& summary, bool histograms) {
+namespace {
+
+nlohmann::ordered_json summary_json(const QualitySummary& summary, bool histograms) {
   using json = nlohmann::ordered_json;
   json j;
   j["elements"] = summary.elements;
@@ -315,6 +318,28 @@ void write_quality_json(std::ostream& out, const QualitySummary& summary, bool h
     measures[m.name] = std::move(e);
   }
   j["measures"] = std::move(measures);
+  return j;
+}
+
+}  // namespace
+
+void write_quality_json(std::ostream& out, const QualitySummary& summary, bool histograms) {
+  out << summary_json(summary, histograms).dump(2) << "\n";
+}
+
+void write_quality_json(std::ostream& out, const QualitySummary& summary, const MeshCheck& check,
+                        bool histograms) {
+  using json = nlohmann::ordered_json;
+  json j = summary_json(summary, histograms);
+  j["valid"] = check.valid();
+  json counts = json::object();
+  for (int rule = 1; rule <= 6; ++rule)
+    counts[std::to_string(rule)] = check.counts[static_cast<std::size_t>(rule)];
+  j["failure_counts"] = std::move(counts);
+  json failures = json::array();
+  for (const MeshFailure& f : check.failures)
+    failures.push_back(json{{"rule", f.rule}, {"message", f.message}});
+  j["failures"] = std::move(failures);
   out << j.dump(2) << "\n";
 }
 

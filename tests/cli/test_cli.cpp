@@ -2,11 +2,14 @@
 // not, and byte-identical output from run to run.
 #include <array>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "run_cli.hpp"
 #include "test_support.hpp"
@@ -168,8 +171,78 @@ TEST_CASE("quality rates a Gmsh mesh with nodes on the true circle of an arc as 
   INFO(r.out << r.err);
   CHECK(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("valid by quality.md: yes"));
-  const auto doc = nlohmann::json::parse(slurp(d / "q.json"));
+  const auto doc = nlohmann::ordered_json::parse(slurp(d / "q.json"));
   CHECK(doc["triangles"] == 0);
+  // The check sits after the summary: valid, the count per rule, the failures (none).
+  std::vector<std::string> keys;
+  for (const auto& item : doc.items()) keys.push_back(item.key());
+  REQUIRE(keys.size() >= 3);
+  CHECK(keys.front() == "elements");
+  CHECK(std::vector<std::string>(keys.end() - 3, keys.end()) ==
+        std::vector<std::string>{"valid", "failure_counts", "failures"});
+  CHECK(doc["valid"] == true);
+  CHECK(doc["failures"].empty());
+  for (const char* rule : {"1", "2", "3", "4", "5", "6"}) CHECK(doc["failure_counts"][rule] == 0);
+
+  // One node of the hole moved 1e-3 towards the centre: rules 4 (areas) and 6 (boundary
+  // following) fail, and the JSON names them with their rule numbers.
+  std::istringstream in(slurp(d / "p.msh"));
+  std::ostringstream moved;
+  bool in_nodes = false, done = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line == "$Nodes") in_nodes = true;
+    if (line == "$EndNodes") in_nodes = false;
+    std::istringstream words(line);
+    double x = 0.0, y = 0.0, z = 0.0;
+    std::string rest;
+    if (in_nodes && !done && (words >> x >> y >> z) && !(words >> rest) &&
+        std::abs(std::hypot(x - 12.0, y - 10.0) - 4.0) < 1e-9) {
+      const double f = 1.0 - 1e-3 / 4.0;
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g", 12.0 + f * (x - 12.0),
+                    10.0 + f * (y - 10.0), z);
+      line = buf;
+      done = true;
+    }
+    moved << line << "\n";
+  }
+  REQUIRE(done);
+  std::ofstream(d / "moved.msh") << moved.str();
+  const std::string rate_moved = "quality " +
+                                 q(laytracks::test::cases_dir() + "/plate_with_hole.json") + " " +
+                                 q(d / "moved.msh") + " --quiet --json ";
+  const Run bad = run(rate_moved + q(d / "bad.json"));
+  INFO(bad.err);
+  CHECK(bad.status == 5);
+  const std::string text = slurp(d / "bad.json");
+  const auto b = nlohmann::ordered_json::parse(text);
+  CHECK(b["valid"] == false);
+  CHECK(b["quads"] == doc["quads"]);
+  CHECK(b["failure_counts"]["4"].get<int>() > 0);
+  CHECK(b["failure_counts"]["6"].get<int>() > 0);
+  REQUIRE_FALSE(b["failures"].empty());
+  std::array<int, 7> listed{};
+  int last_rule = 0;
+  for (const auto& f : b["failures"]) {
+    const int rule = f["rule"].get<int>();
+    REQUIRE(rule >= 1);
+    REQUIRE(rule <= 6);
+    ++listed[static_cast<std::size_t>(rule)];
+    CHECK(rule >= last_rule);  // in rule order
+    last_rule = rule;
+    CHECK_THAT(f["message"].get<std::string>(),
+               Catch::StartsWith("rule " + std::to_string(rule) + ": "));
+    // The same sentences as on stderr.
+    CHECK_THAT(bad.err, Catch::Contains(f["message"].get<std::string>()));
+  }
+  CHECK(listed[4] > 0);
+  CHECK(listed[6] > 0);
+  for (std::size_t rule = 1; rule <= 6; ++rule)
+    CHECK(listed[rule] <= b["failure_counts"][std::to_string(rule)].get<int>());
+  // Deterministic: rating again writes the same bytes.
+  const Run again = run(rate_moved + q(d / "bad2.json"));
+  CHECK(again.status == 5);
+  CHECK(slurp(d / "bad2.json") == text);
 }
 
 TEST_CASE("quality rates a Gmsh mesh of a part: quads valid, triangles refused", "[cli][quality]") {

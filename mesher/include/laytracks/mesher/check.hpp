@@ -157,11 +157,20 @@ struct QualitySummary {
 QualitySummary summarize(const Part& part, const QuadMesh& mesh);
 
 /// Writes the summary as one JSON object, keys in a fixed order: elements, nodes, quads,
-/// triangles, invalid_elements, measured, bad_angle_percent, then "measures": an object with
+/// triangles, invalid_elements, measured, bad_angle_percent, "size" ({min, max,
+/// worst_neighbour_ratio, p95_neighbour_ratio}), then "measures": an object with
 /// one entry per measure in the order above, each {bad_when, mean, worst, p5, p95,
 /// bad_percent} and, when `histograms` is true, "histogram": {lower_bounds, counts}.
 /// Non-finite numbers are written as null. Numbers are the shortest text that reads back
 /// to the same double, so the output is byte-identical for identical input.
 void write_quality_json(std::ostream& out, const QualitySummary& summary, bool histograms);
+
+/// The same summary followed by the check of the same mesh, for `laytracks quality --json`:
+/// "valid" (true or false), "failure_counts" ({"1": n1, ..., "6": n6}, every failure of each
+/// rule counted) and "failures" (an array of {rule, message} in MeshCheck::failures' order:
+/// rule order, then as found; the sentences kept by MeshCheckOptions::max_messages_per_rule).
+/// Byte-identical for identical input, like the summary.
+void write_quality_json(std::ostream& out, const QualitySummary& summary, const MeshCheck& check,
+                        bool histograms);
 
 }  // namespace laytracks
