@@ -151,3 +151,34 @@ TEST_CASE("generated parts mesh valid at three sizes and in another pose", "[mes
   }
   CHECK(meshed == 72);
 }
+
+TEST_CASE("generated parts mesh valid in adaptive mode at two angles and in another pose",
+          "[mesh][generated][adaptive]") {
+  std::mt19937 rng(2027);
+  int meshed = 0;
+  for (int i = 0; i < 24; ++i) {
+    const RawPart raw = i % 4 == 3 ? random_bracket(rng) : random_plate(rng, i % 4);
+    const Part part = build_part(raw);
+    for (const double dtheta : {20.0, 10.0}) {
+      INFO("part " << i << ", dtheta " << dtheta);
+      MeshPartOptions options;
+      options.adaptive = true;
+      options.dtheta_deg = dtheta;
+      MeshPartResult r;
+      REQUIRE_NOTHROW(r = mesh_part(part, options));
+      CHECK(r.check.valid());
+      CHECK(r.quality.triangles == 0);
+      ++meshed;
+    }
+    const Transform pose =
+        compose(scaling(1e3), compose(translation({5, -3, 2}), rotation({2, -1, 1}, 2.3)));
+    MeshPartOptions options;
+    options.adaptive = true;
+    const MeshPartResult a = mesh_part(part, options);
+    const MeshPartResult b = mesh_part(build_part(transformed(raw, pose)), options);
+    INFO("part " << i << " turned, moved and scaled by 1e3");
+    CHECK(b.check.valid());
+    CHECK(b.mesh.elements.size() == a.mesh.elements.size());
+  }
+  CHECK(meshed == 48);
+}
