@@ -1122,6 +1122,8 @@ void untangle_nodes(std::vector<Vec2>& pos,
         }
     floor_len[v] = count ? kMinEdgeFraction * sum / count : 0.0;
   }
+  // The worst quad round v, or -infinity when an edge at v is below its floor: a node whose
+  // edge is already that short takes any position that lengthens it, within `floor_j` below.
   auto worst_at = [&](std::uint32_t v) {
     double w = std::numeric_limits<double>::infinity();
     for (std::uint32_t q : around[v]) {
@@ -1150,6 +1152,17 @@ void untangle_nodes(std::vector<Vec2>& pos,
           }
       double current = worst_at(v);
       if (current >= kAcceptJacobian) continue;
+      // No move may take the worst quad round v below min(its value now, kSmoothFloor), the
+      // floor of the other sweeps. Binding only when v starts with an edge below its floor
+      // (current is then -infinity): before, any position with long enough edges was
+      // "better", however inverted its quads (tray_ribs, adaptive, dtheta 1: a quad turned
+      // clockwise in floor_ne).
+      double before = std::numeric_limits<double>::infinity();
+      for (std::uint32_t q : around[v]) {
+        const auto& x = quads[q];
+        before = std::min(before, min_scaled_jacobian(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]));
+      }
+      const double floor_j = std::min(before, kSmoothFloor);
       step *= 0.25;
       Vec2 ref{1.0, 0.0};
       for (std::size_t k = 0; k < 4; ++k)
@@ -1170,7 +1183,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
             const Vec2 d{k.x * ref.x - k.y * ref.y, k.x * ref.y + k.y * ref.x};
             pos[v] = here + step * d;
             const double w = worst_at(v);
-            if (w > best + 1e-12) {
+            if (w > best + 1e-12 && w >= floor_j) {
               best = w;
               best_pos = pos[v];
             }

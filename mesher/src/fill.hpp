@@ -84,6 +84,9 @@ void optimize_nodes(std::vector<Vec2>& pos,
 
 /// Moves each interior node whose worst quad is below kAcceptJacobian by a compass search that
 /// raises the smallest scaled Jacobian of the quads around it (it untangles inverted quads).
+/// A node may not come closer to a neighbour than kMinEdgeFraction x its mean edge before the
+/// sweeps; one already closer takes a position that lengthens the edge, but none that takes
+/// its worst quad below min(its value before, kSmoothFloor): no quad is ever inverted.
 void untangle_nodes(std::vector<Vec2>& pos,
                     const std::vector<bool>& fixed,
                     const std::vector<std::array<std::uint32_t, 4>>& quads,

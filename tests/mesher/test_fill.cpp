@@ -78,3 +78,71 @@ TEST_CASE("faces that once had no template", "[fill]") {
     check_fill(f, fill_face(f, "face 21"));
   }
 }
+
+namespace {
+
+/// A 3 x 3 grid of quads over 4 x 4 nodes (row by row), the four inner nodes free.
+std::vector<std::array<std::uint32_t, 4>> grid_quads() {
+  std::vector<std::array<std::uint32_t, 4>> quads;
+  for (std::uint32_t j = 0; j < 3; ++j)
+    for (std::uint32_t i = 0; i < 3; ++i)
+      quads.push_back({j * 4 + i, j * 4 + i + 1, (j + 1) * 4 + i + 1, (j + 1) * 4 + i});
+  return quads;
+}
+
+double worst_quad(const std::vector<Vec2>& pos, const std::vector<std::array<std::uint32_t, 4>>& quads) {
+  double w = 1.0;
+  for (const auto& q : quads)
+    w = std::min(w, min_scaled_jacobian(pos[q[0]], pos[q[1]], pos[q[2]], pos[q[3]]));
+  return w;
+}
+
+}  // namespace
+
+// A node starting with an edge below the untangler's length floor scored -infinity, so any
+// position that lengthened the edge was "better", inverted quads and all: tray_ribs at
+// dtheta 1 (adaptive) came out with a clockwise quad in floor_ne after the smoothing.
+TEST_CASE("the untangler never inverts a quad to lengthen a short edge", "[fill][smooth]") {
+  const auto quads = grid_quads();
+  std::vector<bool> fixed(16, true);
+  fixed[5] = fixed[6] = fixed[9] = fixed[10] = false;
+  SECTION("a sheared grid with node 9 close to node 8") {
+    std::vector<Vec2> pos = {
+        {-0.21132485088604808, 0.011176674864039437}, {0.91552556386555728, 0.013872644402262442},
+        {1.8431498315937431, 0.014961927208110595},   {3.2874730702631938, -0.0014664902253733263},
+        {0.60104586351503064, 0.05208765830330378},   {1.8745036310312615, 0.081289066828097264},
+        {2.5828823788660791, 0.07860201959903107},    {3.5769111278419365, 0.08334472041065237},
+        {1.4237184775642944, 0.12731695177906704},    {1.6290761149979542, 0.13121094114830134},
+        {3.6841940088123768, 0.12119213572652897},    {4.9181043688730979, 0.12942758763823334},
+        {2.7330943764430975, 0.20442100421303497},    {3.5845993506895937, 0.21563646310139406},
+        {4.2109895981274317, 0.19680992082076101},    {5.3412319375426405, 0.19540893133345202}};
+    const double before = worst_quad(pos, quads);
+    REQUIRE(before > kMinValidJacobian);
+    untangle_nodes(pos, fixed, quads, 10);
+    CHECK(worst_quad(pos, quads) >= std::min(before, kSmoothFloor));
+  }
+  SECTION("random sheared grids with an inner node pulled towards a neighbour") {
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    int tried = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+      const double sy = 0.05 + 0.95 * (u(rng) + 1.0) / 2.0, shear = u(rng);
+      std::vector<Vec2> pos;
+      for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) pos.push_back({i + shear * j + 0.3 * u(rng), sy * (j + 0.3 * u(rng))});
+      const std::uint32_t inner[4] = {5, 6, 9, 10};
+      const std::uint32_t a = inner[trial % 4];
+      const std::uint32_t nbs[4] = {a - 1, a + 1, a - 4, a + 4};
+      const std::uint32_t b = nbs[rng() % 4];
+      pos[a] = pos[a] + (0.5 + 0.49 * (u(rng) + 1.0) / 2.0) * (pos[b] - pos[a]);
+      const double before = worst_quad(pos, quads);
+      if (before <= kMinValidJacobian) continue;
+      ++tried;
+      untangle_nodes(pos, fixed, quads, 10);
+      const double after = worst_quad(pos, quads);
+      INFO("trial " << trial);
+      if (after < std::min(before, kSmoothFloor)) FAIL("worst quad " << before << " -> " << after);
+    }
+    CHECK(tried > 1000);
+  }
+}
