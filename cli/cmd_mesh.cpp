@@ -21,8 +21,9 @@
 namespace laytracks::cli {
 
 const char* const kMeshHelp =
-    "usage: laytracks mesh PART.json -o OUT.ext [--size W | --adaptive [--dtheta DEG]\n"
-    "                      [--min-size S] [--max-size S]] [--smooth N] [--report R.json]\n"
+    "usage: laytracks mesh PART.json -o OUT.ext [--size W | --uniform | --adaptive\n"
+    "                      [--dtheta DEG] [--min-size S] [--max-size S]] [--smooth N]\n"
+    "                      [--report R.json]\n"
     "                      [--chord-tol T] [--quiet] [--debug-dump DIR]\n"
     "\n"
     "Meshes the part with quadrilaterals only (LayTracks: uniform tracks, or with --adaptive\n"

@@ -37,8 +37,8 @@ std::set<std::string> meshing_flags();
   "  --uniform        uniform mode, whatever the part's mesh.mode says\n"                   \
   "  --dtheta DEG     adaptive: angular increment (default: the part's mesh.dtheta_deg,\n"   \
   "                   else 15); smaller is finer\n"                                          \
-  "  --min-size S     adaptive: no track narrower than S (default 3% of the largest medial\n" \
-  "                   radius, the paper's MIN_END_WIDTH)\n"                                  \
+  "  --min-size S     adaptive: no track narrower than S (default: the paper's MIN_END_WIDTH,\n" \
+  "                   3% of the largest medial radius at dtheta 15, in proportion to dtheta)\n" \
   "  --max-size S     adaptive: no track wider than S (default: no bound)\n"                 \
   "  --smooth N       Laplacian sweeps over interior nodes, then untangling sweeps on\n"     \
   "                   the worst ones; never inverting an element\n"                         \
