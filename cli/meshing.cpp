@@ -25,8 +25,8 @@ MeshingOptions meshing_options(const Args& args) {
   o.mesh.dtheta_deg = args.positive_number("--dtheta");
   o.mesh.min_size = args.positive_number("--min-size");
   o.mesh.max_size = args.positive_number("--max-size");
-  if (o.mesh.dtheta_deg && !(*o.mesh.dtheta_deg < 90.0))
-    throw UsageError("--dtheta must be below 90 degrees, got " + *args.value("--dtheta"));
+  if (o.mesh.dtheta_deg && !(*o.mesh.dtheta_deg <= 90.0))
+    throw UsageError("--dtheta is an angle in degrees in (0, 90], got " + *args.value("--dtheta"));
   if (o.mesh.min_size && o.mesh.max_size && *o.mesh.min_size > *o.mesh.max_size)
     throw UsageError("--min-size " + *args.value("--min-size") + " is larger than --max-size " +
                      *args.value("--max-size"));

@@ -367,7 +367,7 @@ TEST_CASE("mesh --adaptive: the mode from the part or the command line, its repo
        {Case{"--adaptive --size 2", "--size is the element size of uniform mode"},
         Case{"--adaptive --uniform", "choose one mode"},
         Case{"--uniform --dtheta 10", "are for adaptive mode"},
-        Case{"--adaptive --dtheta 95", "--dtheta must be below 90 degrees"},
+        Case{"--adaptive --dtheta 95", "--dtheta is an angle in degrees in (0, 90]"},
         Case{"--adaptive --min-size 2 --max-size 1", "is larger than --max-size"},
         Case{"--adaptive --dtheta -3", "--dtheta needs a positive number"}}) {
     CAPTURE(c.args);
