@@ -49,6 +49,9 @@ constexpr double kMergeBreakRel = 1e-8;
 /// quad with a flat corner at the B-Rep vertex beside it (cgal_sample_0: 0.013). Farther ones
 /// stay: merged with their neighbours' pieces, pieces of about h became single edges of 2 h.
 constexpr double kIdleBreakGap = 0.1;
+/// The final smoothing's untangler works on every node with a quad below this (the
+/// templates' relaxation stops at kAcceptJacobian, the bound of their choice).
+constexpr double kFinalUntangleTarget = 0.6;
 /// Two rails from one boundary node closer in angle than this are not both kept (10 degrees:
 /// the quad at their tip would have a scaled Jacobian below sin 10 = 0.17).
 constexpr double kMinFanAngle = 10.0 * kPi / 180.0;
@@ -953,7 +956,7 @@ void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations) {
     // Then the corners' angles, against the edge lengths the Laplacian sweeps left.
     optimize_nodes(pos, fix, quads, iterations);
     // Then each node still in a quad below kAcceptJacobian moves to raise its worst quad.
-    untangle_nodes(pos, fix, quads, iterations);
+    untangle_nodes(pos, fix, quads, iterations, kFinalUntangleTarget);
     for (std::size_t i = 0; i < global.size(); ++i)
       if (pos[i] != before[i]) mesh.nodes[global[i]] = frame.to_3d(pos[i]);
   }

@@ -1102,7 +1102,8 @@ void smooth_nodes(std::vector<Vec2>& pos,
 void untangle_nodes(std::vector<Vec2>& pos,
                     const std::vector<bool>& fixed,
                     const std::vector<std::array<std::uint32_t, 4>>& quads,
-                    int iterations) {
+                    int iterations,
+                    double target) {
   const std::size_t n = pos.size();
   std::vector<std::vector<std::uint32_t>> around(n);
   for (std::uint32_t q = 0; q < quads.size(); ++q)
@@ -1151,7 +1152,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
             step = std::min(step, distance(pos[v], pos[quads[q][(k + 3) % 4]]));
           }
       double current = worst_at(v);
-      if (current >= kAcceptJacobian) continue;
+      if (current >= target) continue;
       // No move may take the worst quad round v below min(its value now, kSmoothFloor), the
       // floor of the other sweeps. Binding only when v starts with an edge below its floor
       // (current is then -infinity): before, any position with long enough edges was

@@ -82,7 +82,7 @@ void optimize_nodes(std::vector<Vec2>& pos,
                     const std::vector<std::array<std::uint32_t, 4>>& quads,
                     int iterations);
 
-/// Moves each interior node whose worst quad is below kAcceptJacobian by a compass search that
+/// Moves each interior node whose worst quad is below `target` by a compass search that
 /// raises the smallest scaled Jacobian of the quads around it (it untangles inverted quads).
 /// A node may not come closer to a neighbour than kMinEdgeFraction x its mean edge before the
 /// sweeps; one already closer takes a position that lengthens the edge, but none that takes
@@ -90,7 +90,8 @@ void optimize_nodes(std::vector<Vec2>& pos,
 void untangle_nodes(std::vector<Vec2>& pos,
                     const std::vector<bool>& fixed,
                     const std::vector<std::array<std::uint32_t, 4>>& quads,
-                    int iterations);
+                    int iterations,
+                    double target = kAcceptJacobian);
 
 /// A node whose Newton step promises less decrease of its objective than this stays.
 constexpr double kOptimizeTolerance = 1e-4;
