@@ -52,6 +52,8 @@ constexpr double kIdleBreakGap = 0.1;
 /// The final smoothing's untangler works on every node with a quad below this (the
 /// templates' relaxation stops at kAcceptJacobian, the bound of their choice).
 constexpr double kFinalUntangleTarget = 0.6;
+/// ... and keeps a node's edges above this x their mean length before the sweeps.
+constexpr double kFinalEdgeFraction = 0.3;
 /// Two rails from one boundary node closer in angle than this are not both kept (10 degrees:
 /// the quad at their tip would have a scaled Jacobian below sin 10 = 0.17).
 constexpr double kMinFanAngle = 10.0 * kPi / 180.0;
@@ -956,7 +958,7 @@ void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations) {
     // Then the corners' angles, against the edge lengths the Laplacian sweeps left.
     optimize_nodes(pos, fix, quads, iterations);
     // Then each node still in a quad below kAcceptJacobian moves to raise its worst quad.
-    untangle_nodes(pos, fix, quads, iterations, kFinalUntangleTarget);
+    untangle_nodes(pos, fix, quads, iterations, kFinalUntangleTarget, kFinalEdgeFraction);
     for (std::size_t i = 0; i < global.size(); ++i)
       if (pos[i] != before[i]) mesh.nodes[global[i]] = frame.to_3d(pos[i]);
   }

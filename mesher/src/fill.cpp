@@ -1103,7 +1103,8 @@ void untangle_nodes(std::vector<Vec2>& pos,
                     const std::vector<bool>& fixed,
                     const std::vector<std::array<std::uint32_t, 4>>& quads,
                     int iterations,
-                    double target) {
+                    double target,
+                    double min_edge_fraction) {
   const std::size_t n = pos.size();
   std::vector<std::vector<std::uint32_t>> around(n);
   for (std::uint32_t q = 0; q < quads.size(); ++q)
@@ -1121,7 +1122,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
           sum += distance(pos[v], pos[quads[q][(k + 1) % 4]]);
           ++count;
         }
-    floor_len[v] = count ? kMinEdgeFraction * sum / count : 0.0;
+    floor_len[v] = count ? min_edge_fraction * sum / count : 0.0;
   }
   // The worst quad round v, or -infinity when an edge at v is below its floor: a node whose
   // edge is already that short takes any position that lengthens it, within `floor_j` below.

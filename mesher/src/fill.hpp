@@ -82,22 +82,23 @@ void optimize_nodes(std::vector<Vec2>& pos,
                     const std::vector<std::array<std::uint32_t, 4>>& quads,
                     int iterations);
 
+/// The untangler keeps every edge at a node at least this x their mean length before it.
+constexpr double kMinEdgeFraction = 0.2;
+
 /// Moves each interior node whose worst quad is below `target` by a compass search that
 /// raises the smallest scaled Jacobian of the quads around it (it untangles inverted quads).
-/// A node may not come closer to a neighbour than kMinEdgeFraction x its mean edge before the
+/// A node may not come closer to a neighbour than min_edge_fraction x its mean edge before the
 /// sweeps; one already closer takes a position that lengthens the edge, but none that takes
 /// its worst quad below min(its value before, kSmoothFloor): no quad is ever inverted.
 void untangle_nodes(std::vector<Vec2>& pos,
                     const std::vector<bool>& fixed,
                     const std::vector<std::array<std::uint32_t, 4>>& quads,
                     int iterations,
-                    double target = kAcceptJacobian);
+                    double target = kAcceptJacobian,
+                    double min_edge_fraction = kMinEdgeFraction);
 
 /// A node whose Newton step promises less decrease of its objective than this stays.
 constexpr double kOptimizeTolerance = 1e-4;
-
-/// The untangler keeps every edge at a node at least this x their mean length before it.
-constexpr double kMinEdgeFraction = 0.2;
 
 /// A face's quads are accepted only when their smallest scaled Jacobian is above this (so
 /// that the 3D check, which sees the nodes after the frame round trip, agrees).
