@@ -15,6 +15,7 @@ const char* const kHelp =
     "\n"
     "commands:\n"
     "  mesh PART.json -o OUT  mesh the part with quads, check it, write .msh .vtu .bdf .inp ...\n"
+    "                         (uniform tracks, or --adaptive: sized by the medial radius)\n"
     "  batch INPUTS -o DIR    mesh many parts (files, folders, list files) in parallel, with a\n"
     "                         table of the results and DIR/batch-report.json\n"
     "  medial PART.json       the medial axis of every patch, as JSON and as a picture\n"
