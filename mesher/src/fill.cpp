@@ -74,8 +74,12 @@ double face_score(const std::vector<Quad>& quads, Pos pos, const FaceInput& face
   for (const Quad& q : quads) {
     double sj = min_scaled_jacobian(pos(q[0]), pos(q[1]), pos(q[2]), pos(q[3]));
     double edge = std::numeric_limits<double>::infinity();
-    for (std::size_t k = 0; k < 4; ++k) edge = std::min(edge, distance(pos(q[k]), pos(q[(k + 1) % 4])));
-    if (edge < tiny && sj > 0.0) sj *= edge / tiny;
+    // Squared lengths first: this runs for every quad of every template tried.
+    for (std::size_t k = 0; k < 4; ++k) {
+      const Vec2 d = pos(q[(k + 1) % 4]) - pos(q[k]);
+      edge = std::min(edge, dot(d, d));
+    }
+    if (edge < tiny * tiny && sj > 0.0) sj *= std::sqrt(edge) / tiny;
     worst = std::min(worst, sj);
   }
   return worst;
@@ -1124,6 +1128,9 @@ void untangle_nodes(std::vector<Vec2>& pos,
         }
     floor_len[v] = count ? min_edge_fraction * sum / count : 0.0;
   }
+  std::vector<double> floor2(n);  // squared, for the comparisons in the search's inner loop
+  for (std::uint32_t v = 0; v < n; ++v) floor2[v] = floor_len[v] * floor_len[v];
+  const auto squared_distance = [](Vec2 a, Vec2 b) { return dot(a - b, a - b); };
   // The worst quad round v, or -infinity when an edge at v is below its floor: a node whose
   // edge is already that short takes any position that lengthens it, within `floor_j` below.
   auto worst_at = [&](std::uint32_t v) {
@@ -1131,8 +1138,8 @@ void untangle_nodes(std::vector<Vec2>& pos,
     for (std::uint32_t q : around[v]) {
       const auto& x = quads[q];
       for (std::size_t k = 0; k < 4; ++k)
-        if (x[k] == v && (distance(pos[v], pos[x[(k + 1) % 4]]) < floor_len[v] ||
-                          distance(pos[v], pos[x[(k + 3) % 4]]) < floor_len[v]))
+        if (x[k] == v && (squared_distance(pos[v], pos[x[(k + 1) % 4]]) < floor2[v] ||
+                          squared_distance(pos[v], pos[x[(k + 3) % 4]]) < floor2[v]))
           return -std::numeric_limits<double>::infinity();
       w = std::min(w, min_scaled_jacobian(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]));
     }
