@@ -356,13 +356,40 @@ double triangle_shape(Vec2 a, Vec2 b, Vec2 c) {
 }
 
 
-/// True when the open segments pq and rs cross or touch (a shared end point does not count).
+/// Three points whose angle at the first (the sine between the two directions) is below this
+/// are collinear, and a triangle whose triangle_shape is not above it is flat: far above
+/// rounding (nodes laid on one straight rail or boundary side are collinear but for their last
+/// bits, which differ between poses of a part), far below any shape a template could use.
+constexpr double kCollinearSine = 1e-9;
+
+/// Which side of the line ab the point c lies on: 1 left, -1 right, 0 on it (within
+/// kCollinearSine).
+int side_of(Vec2 a, Vec2 b, Vec2 c) {
+  const double d = cross(b - a, c - a);
+  const double tol = kCollinearSine * norm(b - a) * norm(c - a);
+  return d > tol ? 1 : (d < -tol ? -1 : 0);
+}
+
+/// True when the open segments pq and rt cross or touch (a shared end point does not count).
+/// Collinear segments meet only when they overlap: exactly collinear nodes (a diagonal along
+/// a straight rail, in a pose where its nodes' coordinates are exact) must not be told apart
+/// from nearly collinear ones by the signs of rounding errors (a face of a generated bracket
+/// lost its best diagonal in one pose, and its pairs template went from 49 quads to 112).
 bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t) {
   if (p == r || p == t || q == r || q == t) return false;
-  const double d1 = cross(q - p, r - p), d2 = cross(q - p, t - p);
-  const double d3 = cross(t - r, p - r), d4 = cross(t - r, q - r);
-  return ((d1 <= 0.0 && d2 >= 0.0) || (d1 >= 0.0 && d2 <= 0.0)) &&
-         ((d3 <= 0.0 && d4 >= 0.0) || (d3 >= 0.0 && d4 <= 0.0));
+  const int d1 = side_of(p, q, r), d2 = side_of(p, q, t);
+  const int d3 = side_of(r, t, p), d4 = side_of(r, t, q);
+  if ((d1 == 0 && d2 == 0) || (d3 == 0 && d4 == 0)) {
+    // Collinear: the parameters of the shorter segment's ends along the longer one overlap
+    // [0, 1] (touching counts).
+    const bool pq_longer = dot(q - p, q - p) >= dot(t - r, t - r);
+    const Vec2 o = pq_longer ? p : r, d = pq_longer ? q - p : t - r;
+    const Vec2 a = pq_longer ? r : p, b = pq_longer ? t : q;
+    const double l2 = dot(d, d);
+    const double sa = dot(a - o, d) / l2, sb = dot(b - o, d) / l2;
+    return std::max(sa, sb) >= -kCollinearSine && std::min(sa, sb) <= 1.0 + kCollinearSine;
+  }
+  return d1 * d2 <= 0 && d3 * d4 <= 0;
 }
 
 bool inside_polygon(Vec2 x, const std::vector<Vec2>& poly) {
@@ -403,8 +430,7 @@ std::vector<std::array<std::uint32_t, 3>> triangulate(const std::vector<Vec2>& p
         if (k != i && k != j) {
           const Vec2 d = poly[j] - poly[i];
           const double along = dot(poly[k] - poly[i], d);
-          if (std::abs(cross(d, poly[k] - poly[i])) <= 1e-12 * dot(d, d) && along > 0.0 &&
-              along < dot(d, d))
+          if (side_of(poly[i], poly[j], poly[k]) == 0 && along > 0.0 && along < dot(d, d))
             good = false;
         }
       }
@@ -421,7 +447,7 @@ std::vector<std::array<std::uint32_t, 3>> triangulate(const std::vector<Vec2>& p
       for (std::uint32_t k = i + 1; k < j; ++k) {
         const double left = best[i * m + k], right = best[k * m + j];
         if (left == kNone || right == kNone) continue;
-        if (triangle_shape(poly[i], poly[k], poly[j]) <= 0.0) continue;
+        if (triangle_shape(poly[i], poly[k], poly[j]) <= kCollinearSine) continue;  // flat
         const double v = std::min({left, right, score(i, k, j)});
         if (v > best[i * m + j] + kTriangulationTie) {
           best[i * m + j] = v;
@@ -655,7 +681,10 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
         const Vec2 first = in ? inner.front() : poly[j], last = in ? inner.back() : poly[i];
         const double ai = ccw_angle(poly[(i + 1) % n] - poly[i], first - poly[i]);
         const double aj = ccw_angle(poly[(j + 1) % n] - poly[j], last - poly[j]);
-        if (ai <= 0.0 || ai >= angle[i] || aj <= 0.0 || aj >= angle[j]) continue;
+        // A chord along a side (collinear nodes: an angle of 0 or 2 pi but for rounding) is none.
+        if (ai <= kCollinearSine || ai >= angle[i] - kCollinearSine || aj <= kCollinearSine ||
+            aj >= angle[j] - kCollinearSine)
+          continue;
         double score = std::min({ai, angle[i] - ai, aj, angle[j] - aj, 0.5 * kPi}) * kDeg;
         if (score <= bar()) continue;
         const double spacing = len / static_cast<double>(in + 1);

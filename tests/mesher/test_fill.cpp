@@ -79,6 +79,54 @@ TEST_CASE("faces that once had no template", "[fill]") {
   }
 }
 
+// A face of a generated bracket (seed 4242, part 103): rails along straight lines through MA
+// points (joints), its nodes exactly collinear in the part's own pose (coordinates 0 exactly)
+// and collinear but for rounding when turned. No structured template fits; the pairs
+// template's triangulation rejected the diagonal along y = 0 between the two joints as
+// "touching" a collinear rail edge farther along the line when the orientations were exactly
+// 0, and took it otherwise: 112 quads against 49.
+TEST_CASE("a face with exactly collinear rails meshes alike in every pose", "[fill]") {
+  const double a = 0.37012848208368609, y = 18.026528758530624, x = 18.39665724061431;
+  const double c = 1.6055912511698764, b = 1.975719733253559;
+  std::vector<Vec2> cycle{{-a, -y}};
+  for (int k = 0; k <= 8; ++k) cycle.push_back({a, -y + k * y / 8});        // 1 .. 9
+  for (int k = 1; k <= 8; ++k) cycle.push_back({a + k * (x - a) / 8, 0.0});  // 10 .. 17
+  cycle.push_back({x, c / 2});
+  cycle.push_back({x, c});
+  for (int k = 1; k <= 7; ++k) cycle.push_back({x - k * (x - b) / 7, c});   // 20 .. 26
+  for (int k = 1; k <= 7; ++k) cycle.push_back({b, c + k * (y - c) / 7});   // 27 .. 33
+  for (int k = 0; k <= 15; ++k) cycle.push_back({-a, y - k * y / 8});       // 34 .. 49
+  REQUIRE(cycle.size() == 50);
+  auto side = [](FaceSide::Kind kind, std::uint32_t first, std::uint32_t edges,
+                 std::vector<std::uint32_t> joints) {
+    FaceSide s;
+    s.kind = kind;
+    s.first = first;
+    s.edges = edges;
+    s.joints = std::move(joints);
+    return s;
+  };
+  using K = FaceSide::Kind;
+  FaceInput f;
+  f.sides = {side(K::Boundary, 0, 1, {}), side(K::Rail, 1, 16, {8}), side(K::Boundary, 17, 2, {}),
+             side(K::Rail, 19, 14, {7}), side(K::Boundary, 33, 1, {}), side(K::Rail, 34, 16, {8})};
+  f.cycle = cycle;
+  const FaceMesh m = fill_face(f, "the bracket's face");
+  check_fill(f, m);
+  // Turned, moved and scaled: its nodes are no longer exactly on their lines.
+  for (const double turn : {0.5 * kPi, 1.1, 2.3}) {
+    INFO("turned by " << turn);
+    FaceInput g = f;
+    for (Vec2& p : g.cycle) {
+      p = {1e-3 * (std::cos(turn) * p.x - std::sin(turn) * p.y) + 5.0,
+           1e-3 * (std::sin(turn) * p.x + std::cos(turn) * p.y) - 3.0};
+    }
+    const FaceMesh t = fill_face(g, "the bracket's face, turned");
+    check_fill(g, t);
+    CHECK(t.quads.size() == m.quads.size());
+  }
+}
+
 namespace {
 
 /// A 3 x 3 grid of quads over 4 x 4 nodes (row by row), the four inner nodes free.
