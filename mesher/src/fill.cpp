@@ -1086,6 +1086,24 @@ FaceMesh fill_face(const FaceInput& face, const std::string& where) {
   throw InternalError(s.str());
 }
 
+namespace {
+
+/// The relaxations' accept / reject tests compare scaled Jacobians rounded to this: a quad's
+/// value that is exact by construction (a flat corner at a midpoint placed on a diagonal: 0,
+/// or a right angle: 1) comes out as +-1e-16 or 1 - 1e-16 depending on the pose's last bits,
+/// and `after >= before` then took a move in one pose and refused it in another (a pairs face of
+/// a generated part relaxed to a worst corner of 0.154 in one pose and 0.142 in the other).
+/// Far above rounding at any scale, far below any difference the sweeps care about.
+/// A move must still keep a quad that had positive corners positive (`keeps_sign`): the grain
+/// alone would let +4e-10 become -4e-10.
+constexpr double kJacobianGrain = 1e-9;
+
+double settled(double jacobian) { return std::round(jacobian / kJacobianGrain) * kJacobianGrain; }
+
+bool keeps_sign(double before, double after) { return after > 0.0 || !(before > 0.0); }
+
+}  // namespace
+
 void smooth_nodes(std::vector<Vec2>& pos,
                   const std::vector<bool>& fixed,
                   const std::vector<std::array<std::uint32_t, 4>>& quads,
@@ -1122,7 +1140,8 @@ void smooth_nodes(std::vector<Vec2>& pos,
       double after = std::numeric_limits<double>::infinity();
       for (std::uint32_t q : around[v]) after = std::min(after, jac(q));
       // Accept when the worst quad around v does not get worse (or stays above the floor).
-      if (after >= std::min(before, kSmoothFloor) && (after >= before || after >= kSmoothFloor)) {
+      const double b = settled(before), a = settled(after);
+      if (a >= std::min(b, kSmoothFloor) && (a >= b || a >= kSmoothFloor) && keeps_sign(before, after)) {
         moved = moved || old != avg;
       } else {
         pos[v] = old;
@@ -1162,6 +1181,8 @@ void untangle_nodes(std::vector<Vec2>& pos,
   const auto squared_distance = [](Vec2 a, Vec2 b) { return dot(a - b, a - b); };
   // The worst quad round v, or -infinity when an edge at v is below its floor: a node whose
   // edge is already that short takes any position that lengthens it, within `floor_j` below.
+  // Settled (kJacobianGrain) for the comparisons; `raw` gets the unrounded worst.
+  double raw = 0.0;
   auto worst_at = [&](std::uint32_t v) {
     double w = std::numeric_limits<double>::infinity();
     for (std::uint32_t q : around[v]) {
@@ -1172,7 +1193,8 @@ void untangle_nodes(std::vector<Vec2>& pos,
           return -std::numeric_limits<double>::infinity();
       w = std::min(w, min_scaled_jacobian(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]));
     }
-    return w;
+    raw = w;
+    return settled(w);
   };
   static const Vec2 kDirs[8] = {{1, 0}, {0.7071, 0.7071}, {0, 1}, {-0.7071, 0.7071},
                                 {-1, 0}, {-0.7071, -0.7071}, {0, -1}, {0.7071, -0.7071}};
@@ -1200,7 +1222,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
         const auto& x = quads[q];
         before = std::min(before, min_scaled_jacobian(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]));
       }
-      const double floor_j = std::min(before, kSmoothFloor);
+      const double floor_j = std::min(settled(before), kSmoothFloor);
       step *= 0.25;
       Vec2 ref{1.0, 0.0};
       for (std::size_t k = 0; k < 4; ++k)
@@ -1221,7 +1243,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
             const Vec2 d{k.x * ref.x - k.y * ref.y, k.x * ref.y + k.y * ref.x};
             pos[v] = here + step * d;
             const double w = worst_at(v);
-            if (w > best + 1e-12 && w >= floor_j) {
+            if (w > best + 1e-12 && w >= floor_j && keeps_sign(before, raw)) {
               best = w;
               best_pos = pos[v];
             }
@@ -1329,7 +1351,7 @@ void optimize_nodes(std::vector<Vec2>& pos,
         if (!(objective(v, nullptr, nullptr) < f0)) continue;
         double after = std::numeric_limits<double>::infinity();
         for (std::uint32_t q : around[v]) after = std::min(after, jac(q));
-        kept = after >= std::min(before, kSmoothFloor);
+        kept = settled(after) >= std::min(settled(before), kSmoothFloor) && keeps_sign(before, after);
       }
       if (kept) moved = true;
       else pos[v] = old;
