@@ -461,11 +461,7 @@ int run_batch(const std::vector<std::string>& argv_in) {
       argv.push_back(a);
     }
   }
-  std::set<std::string> with_value = meshing_value_options();
-  with_value.insert({"-o", "--format", "-j"});
-  std::set<std::string> flags = meshing_flags();
-  flags.insert("--quiet");
-  const Args args(argv, with_value, flags);
+  const Args args = meshing_args(argv, {"-o", "--format", "-j"}, {"--quiet"});
   if (args.positional().empty()) throw UsageError("batch needs at least one input");
   const auto outdir_arg = args.value("-o");
   if (!outdir_arg) throw UsageError("batch needs -o OUTDIR");

@@ -5,7 +5,6 @@
 #include <iostream>
 #include <map>
 #include <memory>
-#include <set>
 #include <nlohmann/json.hpp>
 
 #include "args.hpp"
@@ -45,11 +44,7 @@ const char* const kCheckLoopsHelp =
 constexpr double kMaxClosureGapRel = 1e-9;
 
 int run_check_loops(const std::vector<std::string>& argv) {
-  std::set<std::string> with_value = meshing_value_options();
-  with_value.insert("--json");
-  std::set<std::string> flags = meshing_flags();
-  flags.insert("--quiet");
-  const Args args(argv, with_value, flags);
+  const Args args = meshing_args(argv, {"--json"}, {"--quiet"});
   if (args.positional().size() != 1) throw UsageError("check-loops needs exactly one PART.json");
   const auto t0 = std::chrono::steady_clock::now();
   const MeshingOptions meshing = meshing_options(args);

@@ -2,7 +2,6 @@
 //                [--view unfolded|oblique]
 #include <iostream>
 #include <memory>
-#include <set>
 
 #include "args.hpp"
 #include "commands.hpp"
@@ -40,9 +39,7 @@ const char* const kDrawHelp =
     LAYTRACKS_MESHING_OPTIONS_HELP;
 
 int run_draw(const std::vector<std::string>& argv) {
-  std::set<std::string> with_value = meshing_value_options();
-  with_value.insert({"--stage", "-o", "--view"});
-  const Args args(argv, with_value, meshing_flags());
+  const Args args = meshing_args(argv, {"--stage", "-o", "--view"}, {});
   if (args.positional().size() != 1) throw UsageError("draw needs exactly one PART.json");
   const auto out = args.value("-o");
   if (!out) throw UsageError("draw needs -o OUT.svg");

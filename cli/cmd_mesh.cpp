@@ -8,7 +8,6 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <set>
 #include <sstream>
 
 #include "args.hpp"
@@ -62,11 +61,7 @@ void check_mesh_extension(const std::string& path) {
 }
 
 int run_mesh(const std::vector<std::string>& argv) {
-  std::set<std::string> with_value = meshing_value_options();
-  with_value.insert({"-o", "--report", "--debug-dump"});
-  std::set<std::string> flags = meshing_flags();
-  flags.insert("--quiet");
-  const Args args(argv, with_value, flags);
+  const Args args = meshing_args(argv, {"-o", "--report", "--debug-dump"}, {"--quiet"});
   if (args.positional().size() != 1) throw UsageError("mesh needs exactly one PART.json");
   const auto out = args.value("-o");
   if (!out) throw UsageError("mesh needs -o OUT.ext (.msh .vtu .bdf .inp .obj .off)");

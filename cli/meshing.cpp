@@ -6,11 +6,13 @@
 
 namespace laytracks::cli {
 
-std::set<std::string> meshing_value_options() {
-  return {"--size", "--smooth", "--chord-tol", "--dtheta", "--min-size", "--max-size"};
+Args meshing_args(const std::vector<std::string>& argv,
+                  std::set<std::string> with_value,
+                  std::set<std::string> flags) {
+  with_value.insert({"--size", "--smooth", "--chord-tol", "--dtheta", "--min-size", "--max-size"});
+  flags.insert({"--adaptive", "--uniform"});
+  return Args(argv, with_value, flags);
 }
-
-std::set<std::string> meshing_flags() { return {"--adaptive", "--uniform"}; }
 
 MeshingOptions meshing_options(const Args& args) {
   MeshingOptions o;

@@ -22,9 +22,12 @@ struct MeshingOptions {
                          ///< --smooth N (default kDefaultSmooth)
 };
 
-/// The options every meshing command takes: with a value, and flags.
-std::set<std::string> meshing_value_options();
-std::set<std::string> meshing_flags();
+/// Parses a meshing command's arguments: its own options (`with_value`, `flags`) and the
+/// meshing options every such command takes (--size, --smooth, --chord-tol, --adaptive,
+/// --uniform, --dtheta, --min-size, --max-size).
+Args meshing_args(const std::vector<std::string>& argv,
+                  std::set<std::string> with_value,
+                  std::set<std::string> flags);
 
 /// The help lines of those options, shared by every meshing command's help text (a literal,
 /// so that each help is one string literal).
@@ -47,7 +50,7 @@ std::set<std::string> meshing_flags();
 
 /// Reads --size, --smooth, --chord-tol, --adaptive, --uniform, --dtheta, --min-size and
 /// --max-size from
-/// `args`, which must declare them (meshing_value_options, meshing_flags). Throws UsageError
+/// `args`, which must declare them (meshing_args does). Throws UsageError
 /// for a value out of range or for options that do not go together.
 MeshingOptions meshing_options(const Args& args);
 

@@ -273,13 +273,6 @@ void seeds_at(const Part& part, const CutSeg& cs, const std::vector<double>& at,
   for (double x : at) seeds.push_back({cs.patch, point_at_length(part, cs, x)});
 }
 
-/// Seeds at equal arc length along CUT-SEG cs, cutting it into `tracks` pieces.
-void seeds_along(const Part& part, const CutSeg& cs, double tracks, std::vector<TrackSeed>& seeds) {
-  std::vector<double> at;
-  for (int k = 1; k < static_cast<int>(tracks); ++k) at.push_back(cs.length * k / tracks);
-  seeds_at(part, cs, at, seeds);
-}
-
 /// Eq. (1), ceil(L / w - 0.5): halves round down. The small margin keeps a length of exactly
 /// k + 1/2 widths from rounding differently when the part is turned.
 double track_count(double length, double width) {
@@ -321,9 +314,11 @@ double width_at(const Part& part, const TrackWidthLaw& law, const CutSeg& cs, do
 std::vector<double> march_tracks(double length, const std::function<double(double)>& width) {
   std::vector<double> left, right;
   double lo = 0.0, hi = length;
+  // The width at each end, read again only when that end moves (each read is a probe of the
+  // radius function through the patches).
+  double w0 = width(lo), wn = width(hi);
   // Each step places at least one end width, which is positive: bounded by length / floor.
   while (hi > lo) {
-    const double w0 = width(lo), wn = width(hi);
     const double rem = hi - lo;
     const double ratio = rem / (w0 + wn);
     if (ratio < kOneCutRatio * (1.0 + kHalfMargin)) break;  // one track: no CUT-VERT
@@ -334,62 +329,60 @@ std::vector<double> march_tracks(double length, const std::function<double(doubl
     }
     // Room for more: step from the narrower end (both when they are equal), so that the
     // corridor is paved from its fine end, whichever end of the loop that is.
-    if (std::abs(w0 - wn) <= kSameWidthRel * std::max(w0, wn)) {
-      lo += w0;
-      hi -= wn;
-      left.push_back(lo);
-      right.push_back(hi);
-    } else if (w0 < wn) {
+    const bool same = std::abs(w0 - wn) <= kSameWidthRel * std::max(w0, wn);
+    const bool step_lo = same || w0 < wn;
+    const bool step_hi = same || !step_lo;
+    if (step_lo) {
       lo += w0;
       left.push_back(lo);
-    } else {
+      w0 = width(lo);
+    }
+    if (step_hi) {
       hi -= wn;
       right.push_back(hi);
+      wn = width(hi);
     }
   }
   left.insert(left.end(), right.rbegin(), right.rend());
   return left;
 }
 
+namespace {
+
+/// Where the track rails cut CUT-SEG cs (arc lengths along it): Eq. (1)'s equal tracks, or
+/// Algorithm III's march from the width law.
+std::vector<double> cuts_along(const Part& part, const CutSeg& cs, const TrackSpacing& spacing) {
+  if (spacing.law) {
+    return march_tracks(cs.length,
+                        [&](double x) { return width_at(part, *spacing.law, cs, x); });
+  }
+  const double tracks = track_count(cs.length, spacing.width);
+  std::vector<double> at;
+  for (int k = 1; k < static_cast<int>(tracks); ++k) at.push_back(cs.length * k / tracks);
+  return at;
+}
+
+/// True when CUT-SEG cs is longer than kGapWidths x its width (adaptive: the mean of the
+/// widths at its ends).
+bool is_gap(const Part& part, const CutSeg& cs, const TrackSpacing& spacing) {
+  const double width =
+      spacing.law ? 0.5 * (width_at(part, *spacing.law, cs, 0.0) +
+                           width_at(part, *spacing.law, cs, cs.length))
+                  : spacing.width;
+  return cs.length > kGapWidths * width * (1.0 + kHalfMargin);
+}
+
+}  // namespace
+
 std::vector<TrackSeed> track_seeds(const Part& part,
                                    const std::vector<MedialAxis>& axes,
                                    const CutGraph& graph,
-                                   double width) {
+                                   const TrackSpacing& spacing) {
   const Corridors corridors = find_corridors(part, axes, graph);
   std::vector<TrackSeed> seeds;
   for (std::size_t m : masters(corridors)) {
     const CutSeg& cs = corridors.segs[m];
-    seeds_along(part, cs, track_count(cs.length, width), seeds);
-  }
-  return seeds;
-}
-
-std::vector<TrackSeed> adaptive_track_seeds(const Part& part,
-                                            const std::vector<MedialAxis>& axes,
-                                            const CutGraph& graph,
-                                            const TrackWidthLaw& law) {
-  const Corridors corridors = find_corridors(part, axes, graph);
-  std::vector<TrackSeed> seeds;
-  for (std::size_t m : masters(corridors)) {
-    const CutSeg& cs = corridors.segs[m];
-    const auto at = march_tracks(cs.length, [&](double x) { return width_at(part, law, cs, x); });
-    seeds_at(part, cs, at, seeds);
-  }
-  return seeds;
-}
-
-std::vector<TrackSeed> adaptive_gap_seeds(const Part& part,
-                                          const std::vector<MedialAxis>& axes,
-                                          const CutGraph& graph,
-                                          const TrackWidthLaw& law) {
-  const Corridors corridors = find_corridors(part, axes, graph);
-  std::vector<TrackSeed> seeds;
-  for (const CutSeg& cs : corridors.segs) {
-    const auto width = [&](double x) { return width_at(part, law, cs, x); };
-    // As in uniform mode: longer than kGapWidths x its (mean end) width.
-    if (cs.length <= 0.5 * kGapWidths * (width(0.0) + width(cs.length)) * (1.0 + kHalfMargin))
-      continue;
-    seeds_at(part, cs, march_tracks(cs.length, width), seeds);
+    seeds_at(part, cs, cuts_along(part, cs, spacing), seeds);
   }
   return seeds;
 }
@@ -397,12 +390,11 @@ std::vector<TrackSeed> adaptive_gap_seeds(const Part& part,
 std::vector<TrackSeed> gap_seeds(const Part& part,
                                  const std::vector<MedialAxis>& axes,
                                  const CutGraph& graph,
-                                 double width) {
+                                 const TrackSpacing& spacing) {
   const Corridors corridors = find_corridors(part, axes, graph);
   std::vector<TrackSeed> seeds;
   for (const CutSeg& cs : corridors.segs) {
-    if (cs.length > kGapWidths * width * (1.0 + kHalfMargin))
-      seeds_along(part, cs, track_count(cs.length, width), seeds);
+    if (is_gap(part, cs, spacing)) seeds_at(part, cs, cuts_along(part, cs, spacing), seeds);
   }
   return seeds;
 }

@@ -33,23 +33,31 @@ struct TrackSeed {
   BoundaryPoint point;
 };
 
-/// Uniform mode (Eq. 1): in each corridor, round(L / w) tracks (at least one), L the length of
-/// its longest CUT-SEG; the track rails start at equal spacing along that CUT-SEG.
+/// How wide the tracks are: `width` in uniform mode (Eq. 1), or the width law of adaptive
+/// mode (Algorithm III) when `law` is set.
+struct TrackSpacing {
+  double width = 0.0;
+  const TrackWidthLaw* law = nullptr;
+};
+
+/// In each corridor, the track rails along its longest CUT-SEG: uniform, round(L / w) tracks
+/// (at least one) at equal spacing, L its length; adaptive, Algorithm III's march.
 std::vector<TrackSeed> track_seeds(const Part& part,
                                    const std::vector<MedialAxis>& axes,
                                    const CutGraph& graph,
-                                   double width);
+                                   const TrackSpacing& spacing);
 
 /// A CUT-SEG longer than this many widths once the corridors' tracks are laid is a gap: a
 /// side that the longest CUT-SEG's rails do not reach (a corridor whose other side is a
 /// concave corner's fan, or one that spans several CUT-SEGs).
 constexpr double kGapWidths = 2.0;
 
-/// Seeds that cut every gap (CUT-SEG longer than kGapWidths x w) into Eq. (1)'s tracks.
+/// Seeds that cut every gap (CUT-SEG longer than kGapWidths x its width) into tracks, as
+/// track_seeds cuts a corridor's longest CUT-SEG.
 std::vector<TrackSeed> gap_seeds(const Part& part,
                                  const std::vector<MedialAxis>& axes,
                                  const CutGraph& graph,
-                                 double width);
+                                 const TrackSpacing& spacing);
 
 /// Algorithm III, Step 3: below this ratio of the length left to the two end widths the rest
 /// is one track; up to kManyCutsRatio it is two, split in the ratio of the end widths.
@@ -60,17 +68,5 @@ constexpr double kManyCutsRatio = 1.3;
 /// length x: where its CUT-VERTs go, ascending. Tracks are laid from both ends, the narrower
 /// end first, until the ratio rule of Step 3 ends it (docs/adaptive.md).
 std::vector<double> march_tracks(double length, const std::function<double(double)>& width);
-
-/// Adaptive mode: the seeds of Algorithm III along each corridor's longest CUT-SEG.
-std::vector<TrackSeed> adaptive_track_seeds(const Part& part,
-                                            const std::vector<MedialAxis>& axes,
-                                            const CutGraph& graph,
-                                            const TrackWidthLaw& law);
-
-/// Adaptive mode: seeds for every CUT-SEG longer than kGapWidths x its end widths' mean.
-std::vector<TrackSeed> adaptive_gap_seeds(const Part& part,
-                                          const std::vector<MedialAxis>& axes,
-                                          const CutGraph& graph,
-                                          const TrackWidthLaw& law);
 
 }  // namespace laytracks::cutgraph_detail

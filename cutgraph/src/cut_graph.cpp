@@ -169,13 +169,12 @@ CutGraph build_cut_graph(const Part& part,
   };
   graph.corridor_count = count();
   if (tracks && options.lay_tracks) {
-    const auto seeds = law ? cutgraph_detail::adaptive_track_seeds(part, axes, graph, *law)
-                           : cutgraph_detail::track_seeds(part, axes, graph, options.track_width);
-    for (const auto& seed : seeds) layer.lay_from(seed.patch, seed.point);
+    const cutgraph_detail::TrackSpacing spacing{options.track_width, law};
+    for (const auto& seed : cutgraph_detail::track_seeds(part, axes, graph, spacing))
+      layer.lay_from(seed.patch, seed.point);
     // Sides the longest CUT-SEG's rails did not reach get tracks of their own (docs/cutgraph.md).
     for (int round = 0; round < 3; ++round) {
-      const auto gaps = law ? cutgraph_detail::adaptive_gap_seeds(part, axes, graph, *law)
-                            : cutgraph_detail::gap_seeds(part, axes, graph, options.track_width);
+      const auto gaps = cutgraph_detail::gap_seeds(part, axes, graph, spacing);
       if (gaps.empty()) break;
       for (const auto& seed : gaps) layer.lay_from(seed.patch, seed.point);
     }

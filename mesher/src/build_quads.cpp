@@ -147,7 +147,7 @@ class QuadBuilder {
       const double len = unit_length(u);
       for (std::size_t j = 1; j + 1 < en.node.size(); ++j) {
         const double near = std::min(en.t[j] - en.t[j - 1], en.t[j + 1] - en.t[j]) * len;
-        gap[en.node[j]] = near / (law_ ? piece_size(u, en.t[j]) : h_);
+        gap[en.node[j]] = near / local_size(u, en.t[j]);
       }
     }
     std::vector<bool> unused(graph_.gverts.size(), false);
@@ -288,7 +288,7 @@ class QuadBuilder {
       en.node.push_back(vertex_node_[un.b.index()]);
       for (std::size_t j = 0; j + 1 < en.t.size(); ++j) {
         const double piece = (en.t[j + 1] - en.t[j]) * len;
-        const double h = law_ ? piece_size(e, 0.5 * (en.t[j] + en.t[j + 1])) : h_;
+        const double h = local_size(e, 0.5 * (en.t[j] + en.t[j + 1]));
         std::uint32_t count =
             piece > (kSplitPiece + kRoundingSlack) * h ? edges_for(piece, h) : 1u;
         if (un.arc >= 0) {  // chords within the chord tolerance
@@ -322,9 +322,10 @@ class QuadBuilder {
 
   static Vec3 lerp3(Vec3 a, Vec3 b, double t) { return a + t * (b - a); }
 
-  /// Adaptive mode: the track width at parameter t of a unit (for an arc, on the
-  /// discretisation edge under that parameter).
-  double piece_size(std::size_t u, double t) const {
+  /// The element size at parameter t of a unit: h, or in adaptive mode the track width there
+  /// (for an arc, on the discretisation edge under that parameter).
+  double local_size(std::size_t u, double t) const {
+    if (!law_) return h_;
     const Unit& un = units_[u];
     if (un.arc < 0) return law_->width_on_edge(un.edge, t);
     for (const auto& [ua, ub, e] : arc_edges_[static_cast<std::size_t>(un.arc)]) {

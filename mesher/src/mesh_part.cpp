@@ -54,8 +54,6 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
     if (on_stage) on_stage(name);
   };
   MeshPartResult r;
-  r.adaptive = options.adaptive.value_or(part.mesh.mode == MeshMode::Adaptive);
-  r.size = options.size.value_or(part.mesh.size.value_or(default_element_size(part)));
   Clock clock;
   stage("medial");
   const std::vector<MedialAxis> axes = compute_medial_axes(part);
@@ -63,10 +61,10 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
   stage("rails");
   std::unique_ptr<TrackWidthLaw> law;
   const CutGraphOptions cg = cut_graph_options(part, axes, options, law);
-  if (law) {
-    r.dtheta_deg = law->options().dtheta * 180.0 / kPi;
-    r.size = law->end_width();
-  }
+  // The mode and the size as cut_graph_options chose them.
+  r.adaptive = law != nullptr;
+  r.size = law ? law->end_width() : cg.track_width;
+  if (law) r.dtheta_deg = law->options().dtheta * 180.0 / kPi;
   const CutGraph graph = build_cut_graph(part, axes, cg);
   if (!graph.problems.empty()) {
     throw InternalError("rails: " + graph.problems.front() + " (" +

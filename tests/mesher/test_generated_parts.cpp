@@ -191,6 +191,28 @@ TEST_CASE("generated parts mesh valid in adaptive mode at two angles and in anot
   CHECK(meshed == 48);
 }
 
+namespace {
+
+/// Meshes the part as given and in `pose` (scaled by `scale`; uniform mode at the default size,
+/// scaled too, or adaptive mode): both valid, and as many quads.
+void check_same_in_pose(const RawPart& raw, const Transform& pose, double scale, bool adaptive) {
+  const Part part = build_part(raw);
+  MeshPartOptions base, moved;
+  if (adaptive) {
+    base.adaptive = moved.adaptive = true;
+  } else {
+    base.size = default_element_size(part);
+    moved.size = *base.size * scale;
+  }
+  const MeshPartResult a = mesh_part(part, base);
+  const MeshPartResult b = mesh_part(build_part(transformed(raw, pose)), moved);
+  CHECK(a.check.valid());
+  CHECK(b.check.valid());
+  CHECK(b.mesh.elements.size() == a.mesh.elements.size());
+}
+
+}  // namespace
+
 // Parts of longer runs of other seeds whose meshes once differed between poses: each a bracket
 // whose second leg is a near-square rectangle; a face there had rails along one straight line
 // through two MA points, exactly collinear in one pose and collinear but for rounding in the
@@ -198,19 +220,10 @@ TEST_CASE("generated parts mesh valid in adaptive mode at two angles and in anot
 // only (649 quads against 586; adaptive 1066 against 1044).
 TEST_CASE("generated parts of other seeds mesh to as many quads in another pose",
           "[mesh][generated]") {
+  const Transform small =
+      compose(scaling(1e-3), compose(translation({5, -3, 2}), rotation({1, 1, 2}, 1.1)));
   SECTION("seed 4242, part 103, uniform, turned and scaled by 1e-3") {
-    const RawPart raw = generated_part(4242, 103);
-    const Part part = build_part(raw);
-    const double h = default_element_size(part);
-    const Transform pose = compose(scaling(1e-3), compose(translation({5, -3, 2}), rotation({1, 1, 2}, 1.1)));
-    MeshPartOptions base, moved;
-    base.size = h;
-    moved.size = h * 1e-3;
-    const MeshPartResult a = mesh_part(part, base);
-    const MeshPartResult b = mesh_part(build_part(transformed(raw, pose)), moved);
-    CHECK(a.check.valid());
-    CHECK(b.check.valid());
-    CHECK(b.mesh.elements.size() == a.mesh.elements.size());
+    check_same_in_pose(generated_part(4242, 103), small, 1e-3, false);
   }
   // Plates of seed 1 with a face of 50 nodes meshed by split or pairs: the pairs template's
   // midpoints on its diagonals make flat corners whose scaled Jacobians are +-1e-17 by pose,
@@ -219,31 +232,14 @@ TEST_CASE("generated parts of other seeds mesh to as many quads in another pose"
   // against 954; part 120: 0.143 against 0.164, 1095 against 1093).
   for (const int index : {4, 120}) {
     SECTION("seed 1, part " + std::to_string(index) + ", uniform, turned and scaled by 1e-3") {
-      const RawPart raw = generated_part(1, index);
-      const Part part = build_part(raw);
-      const double h = default_element_size(part);
-      const Transform pose = compose(scaling(1e-3), compose(translation({5, -3, 2}), rotation({1, 1, 2}, 1.1)));
-      MeshPartOptions base, moved;
-      base.size = h;
-      moved.size = h * 1e-3;
-      const MeshPartResult a = mesh_part(part, base);
-      const MeshPartResult b = mesh_part(build_part(transformed(raw, pose)), moved);
-      CHECK(a.check.valid());
-      CHECK(b.check.valid());
-      CHECK(b.mesh.elements.size() == a.mesh.elements.size());
+      check_same_in_pose(generated_part(1, index), small, 1e-3, false);
     }
   }
   SECTION("seed 777, part 119, adaptive, turned and scaled by 1e3") {
-    const RawPart raw = generated_part(777, 119);
-    const Transform pose =
-        compose(scaling(1e3), compose(translation({5, -3, 2}), rotation({2, -1, 1}, 2.3)));
-    MeshPartOptions options;
-    options.adaptive = true;
-    const MeshPartResult a = mesh_part(build_part(raw), options);
-    const MeshPartResult b = mesh_part(build_part(transformed(raw, pose)), options);
-    CHECK(a.check.valid());
-    CHECK(b.check.valid());
-    CHECK(b.mesh.elements.size() == a.mesh.elements.size());
+    check_same_in_pose(
+        generated_part(777, 119),
+        compose(scaling(1e3), compose(translation({5, -3, 2}), rotation({2, -1, 1}, 2.3))), 1e3,
+        true);
   }
 }
 
