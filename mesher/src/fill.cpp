@@ -349,8 +349,8 @@ double triangle_shape(Vec2 a, Vec2 b, Vec2 c) {
   for (int i = 0; i < 3; ++i) {
     const Vec2 e1 = p[(i + 1) % 3] - p[i];
     const Vec2 e0 = p[(i + 2) % 3] - p[i];
-    const double l = norm(e1) * norm(e0);
-    worst = std::min(worst, l > 0.0 ? cross(e1, e0) / l : -1.0);
+    const double l2 = dot(e1, e1) * dot(e0, e0);  // one square root, not two hypot calls
+    worst = std::min(worst, l2 > 0.0 ? cross(e1, e0) / std::sqrt(l2) : -1.0);
   }
   return worst;
 }
@@ -365,9 +365,11 @@ constexpr double kCollinearSine = 1e-9;
 /// Which side of the line ab the point c lies on: 1 left, -1 right, 0 on it (within
 /// kCollinearSine).
 int side_of(Vec2 a, Vec2 b, Vec2 c) {
-  const double d = cross(b - a, c - a);
-  const double tol = kCollinearSine * norm(b - a) * norm(c - a);
-  return d > tol ? 1 : (d < -tol ? -1 : 0);
+  const Vec2 u = b - a, v = c - a;
+  const double d = cross(u, v);
+  // |d| against kCollinearSine |u| |v|, squared: this runs O(m^3) times in triangulate.
+  if (d * d <= kCollinearSine * kCollinearSine * dot(u, u) * dot(v, v)) return 0;
+  return d > 0.0 ? 1 : -1;
 }
 
 /// True when the open segments pq and rt cross or touch (a shared end point does not count).
