@@ -473,6 +473,68 @@ std::vector<std::array<std::uint32_t, 3>> triangulate(const std::vector<Vec2>& p
   return tris;
 }
 
+/// Two coarse triangles sharing a diagonal become one coarse quad when its four quads (through
+/// its edge midpoints and centre) are at least as good as the six kites of the two triangles
+/// (better by kMergeMargin), best merged quad first, each triangle merged at most once. A
+/// triangle split into three has taper 0.5 at best; a coarse quad split into four keeps the
+/// coarse quad's shape (the subdivision Gmsh applies after Blossom). Merged triangles are
+/// marked in `tris` with kNoId; the coarse quads come back counter-clockwise.
+constexpr double kMergeMargin = 1e-6;
+
+template <class MidAt, class Score>
+std::vector<std::array<std::uint32_t, 4>> merge_coarse_pairs(
+    std::vector<std::array<std::uint32_t, 3>>& tris, const std::vector<Vec2>& coarse, MidAt mid_at,
+    Score score) {
+  using Edge = std::pair<std::uint32_t, std::uint32_t>;
+  std::map<Edge, std::vector<std::size_t>> by_edge;
+  for (std::size_t t = 0; t < tris.size(); ++t)
+    for (std::size_t k = 0; k < 3; ++k)
+      by_edge[std::minmax(tris[t][k], tris[t][(k + 1) % 3])].push_back(t);
+  struct Candidate {
+    double gain;
+    std::size_t t1, t2;
+    std::array<std::uint32_t, 4> quad;
+  };
+  std::vector<Candidate> candidates;
+  for (const auto& [edge, ts] : by_edge) {
+    if (ts.size() != 2) continue;
+    // The quad: t1's corners from the one off the diagonal, then t2's far corner between the
+    // diagonal's ends (both triangles run counter-clockwise).
+    const auto& a = tris[ts[0]];
+    const auto& b = tris[ts[1]];
+    std::size_t ka = 0, kb = 0;
+    while (a[ka] == edge.first || a[ka] == edge.second) ++ka;
+    while (b[kb] == edge.first || b[kb] == edge.second) ++kb;
+    const std::array<std::uint32_t, 4> q{a[ka], a[(ka + 1) % 3], b[kb], a[(ka + 2) % 3]};
+    Vec2 g{0.0, 0.0};
+    std::array<Vec2, 4> e;
+    for (std::size_t k = 0; k < 4; ++k) {
+      e[k] = mid_at(q[k], q[(k + 1) % 4]);
+      g = g + 0.125 * (coarse[q[k]] + e[k]);
+    }
+    double worst = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < 4; ++k)
+      worst = std::min(worst, min_scaled_jacobian(coarse[q[k]], e[k], g, e[(k + 3) % 4]));
+    const double kites = std::min(score(a[0], a[1], a[2]), score(b[0], b[1], b[2]));
+    if (worst > kites + kMergeMargin)
+      candidates.push_back({std::round(worst / kMergeMargin), ts[0], ts[1], q});
+  }
+  // Best first; equal gains (symmetric faces) in the order of the diagonals, so every pose of
+  // a part merges the same pairs.
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& x, const Candidate& y) { return x.gain > y.gain; });
+  std::vector<std::array<std::uint32_t, 4>> out;
+  std::vector<bool> used(tris.size(), false);
+  for (const Candidate& c : candidates) {
+    if (used[c.t1] || used[c.t2]) continue;
+    used[c.t1] = used[c.t2] = true;
+    out.push_back(c.quad);
+  }
+  for (std::size_t t = 0; t < tris.size(); ++t)
+    if (used[t]) tris[t] = {kNoId, kNoId, kNoId};
+  return out;
+}
+
 /// Split: the even (or odd) cycle nodes form a coarse polygon whose edges each have one face
 /// node in their middle; the coarse polygon is triangulated and every triangle split into three
 /// quads through its centre and its edge midpoints. Every face node then has an edge into the
@@ -498,8 +560,9 @@ std::optional<FaceMesh> fill_split(const FaceInput& face, std::uint32_t offset) 
                      min_scaled_jacobian(coarse[b], bc, g, ab),
                      min_scaled_jacobian(coarse[c], ca, g, bc)});
   };
-  const auto tris = triangulate(coarse, score);
+  auto tris = triangulate(coarse, score);
   if (tris.empty()) return std::nullopt;
+  const std::vector<std::array<std::uint32_t, 4>> merged = merge_coarse_pairs(tris, coarse, mid_at, score);
   Builder m(face, FillKind::Split);
   auto node = [&](std::uint32_t k) { return (offset + 2 * k) % n; };
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mids;
@@ -513,7 +576,19 @@ std::optional<FaceMesh> fill_split(const FaceInput& face, std::uint32_t offset) 
     mids.emplace(key, id);
     return id;
   };
+  for (const auto& c : merged) {
+    // A coarse quad: four quads through its edge midpoints and its centre.
+    std::array<std::uint32_t, 4> e{};
+    Vec2 g{0.0, 0.0};
+    for (std::size_t k = 0; k < 4; ++k) {
+      e[k] = mid(c[k], c[(k + 1) % 4]);
+      g = g + 0.125 * (coarse[c[k]] + m.pos(e[k]));
+    }
+    const std::uint32_t centre = m.add(g);
+    for (std::size_t k = 0; k < 4; ++k) m.quad(node(c[k]), e[k], centre, e[(k + 3) % 4]);
+  }
   for (const auto& t : tris) {
+    if (t[0] == kNoId) continue;  // merged into a coarse quad
     const std::uint32_t ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
     const Vec2 g = (1.0 / 6.0) * (coarse[t[0]] + coarse[t[1]] + coarse[t[2]] + m.pos(ab) +
                                   m.pos(bc) + m.pos(ca));
@@ -1020,6 +1095,30 @@ double quantised(double jacobian) {
   return jacobian > kMinValidJacobian ? step : step - 1e6;
 }
 
+/// The mean over a face's quads of min(scaled Jacobian, taper) (quality.md): 1 for squares,
+/// 0.5 for the kites of a triangle split into three. Chooses between unstructured templates
+/// whose worst corners are all acceptable, so that fewer and squarer quads win.
+double mean_shape(const FaceMesh& m, const FaceInput& face) {
+  if (m.quads.empty()) return 0.0;
+  const std::size_t n = face.cycle.size();
+  auto pos = [&](std::uint32_t i) { return i < n ? face.cycle[i] : m.interior[i - n]; };
+  double sum = 0.0;
+  for (const auto& q : m.quads) {
+    double area[4], mean = 0.0;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const Vec2 c = pos(q[k]);
+      area[k] = cross(pos(q[(k + 1) % 4]) - c, pos(q[(k + 3) % 4]) - c);
+      mean += 0.25 * area[k];
+    }
+    const double taper = mean > 0.0 ? std::min({area[0], area[1], area[2], area[3]}) / mean : 0.0;
+    sum += std::min(taper, min_scaled_jacobian(pos(q[0]), pos(q[1]), pos(q[2]), pos(q[3])));
+  }
+  return sum / static_cast<double>(m.quads.size());
+}
+
+/// mean_shape compared in whole steps of this (a later template must be better by one).
+constexpr double kShapeStep = 0.01;
+
 /// Every template in turn; the first good one, else the best.
 std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
   const std::size_t n = face.cycle.size();
@@ -1053,11 +1152,24 @@ std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
   // The O(n^3) templates only for small faces, or when nothing structured gave valid quads.
   const bool costly_ok = n <= kLargeFace || !best || best->min_jacobian < kLargeFaceFloor;
   if (n >= 6 && costly_ok) {
-    if (consider(fill_split(face, 0))) return best;
-    if (consider(fill_split(face, 1))) return best;
-    if (consider(fill_fan_split(face, 0))) return best;
-    if (consider(fill_fan_split(face, 1))) return best;
-    if (consider(fill_cut(face))) return best;
+    // Every unstructured template; of those whose worst corner is acceptable, the one whose
+    // quads are best on average (mean_shape, in whole kShapeStep steps, the first on ties).
+    std::optional<FaceMesh> pick;
+    double pick_shape = 0.0;
+    for (int k = 0; k < 5; ++k) {
+      std::optional<FaceMesh> m = k < 2   ? fill_split(face, static_cast<std::uint32_t>(k))
+                                  : k < 4 ? fill_fan_split(face, static_cast<std::uint32_t>(k - 2))
+                                          : fill_cut(face);
+      if (m && m->min_jacobian >= kAcceptJacobian) {
+        const double shape = std::floor(mean_shape(*m, face) / kShapeStep);
+        if (!pick || shape > pick_shape) {
+          pick = *m;
+          pick_shape = shape;
+        }
+      }
+      consider(std::move(m));
+    }
+    if (pick) return pick;
   }
   if (n >= 4 && costly_ok) consider(fill_pairs(face));
   return best;
