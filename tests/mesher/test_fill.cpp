@@ -194,3 +194,38 @@ TEST_CASE("the untangler never inverts a quad to lengthen a short edge", "[fill]
     CHECK(tried > 1000);
   }
 }
+
+TEST_CASE("faces with corners get coarse quads split in four, not only kites", "[fill]") {
+  // Hexagons (two and four edges a side) read as one side: six corners, so no strip and no
+  // corner grid; the unstructured templates take them. A triangle split into three gives
+  // kites of taper 0.5; a merged pair of coarse triangles gives quads of the coarse quad's
+  // shape.
+  for (const int per_side : {2, 4}) {
+    INFO(per_side << " edges a side");
+    std::vector<Vec2> cycle;
+    for (int k = 0; k < 6; ++k) {
+      const Vec2 a{std::cos(kPi * k / 3.0), 2.0 * std::sin(kPi * k / 3.0)};
+      const Vec2 b{std::cos(kPi * (k + 1) / 3.0), 2.0 * std::sin(kPi * (k + 1) / 3.0)};
+      for (int j = 0; j < per_side; ++j) cycle.push_back(lerp(a, b, double(j) / per_side));
+    }
+    const FaceInput f = one_sided(cycle);
+    const FaceMesh m = fill_face(f, "a hexagon");
+    check_fill(f, m);
+    const auto nn = static_cast<std::uint32_t>(cycle.size());
+    auto pos = [&](std::uint32_t i) { return i < nn ? f.cycle[i] : m.interior[i - nn]; };
+    std::size_t tapered = 0;
+    for (const auto& q : m.quads) {
+      double area[4], mean = 0.0;
+      for (std::size_t k = 0; k < 4; ++k) {
+        const Vec2 c = pos(q[k]);
+        area[k] = cross(pos(q[(k + 1) % 4]) - c, pos(q[(k + 3) % 4]) - c);
+        mean += 0.25 * area[k];
+      }
+      if (std::min({area[0], area[1], area[2], area[3]}) <= 0.8 * mean) ++tapered;
+    }
+    INFO(tapered << " of " << m.quads.size() << " quads tapered");
+    CHECK(m.min_jacobian >= kAcceptJacobian);
+    // Kites alone: every quad tapered. Here a third of the quads at least are not.
+    CHECK(3 * (m.quads.size() - tapered) >= m.quads.size());
+  }
+}
