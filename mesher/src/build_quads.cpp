@@ -52,6 +52,11 @@ constexpr double kIdleBreakGap = 0.1;
 /// The final smoothing's untangler works on every node with a quad below this (the
 /// templates' relaxation stops at kAcceptJacobian, the bound of their choice).
 constexpr double kFinalUntangleTarget = 0.6;
+/// flip_edges: pairs of quads whose worse is below kFlipBelow are re-split when another
+/// diagonal of their hexagon beats it by kFlipGain; at most kFlipPasses passes.
+constexpr double kFlipBelow = 0.3;
+constexpr double kFlipGain = 0.05;
+constexpr int kFlipPasses = 4;
 /// ... and keeps a node's edges above this x their mean length before the sweeps.
 constexpr double kFinalEdgeFraction = 0.3;
 /// Two rails from one boundary node closer in angle than this are not both kept (10 degrees:
@@ -911,6 +916,71 @@ class QuadBuilder {
 
 QuadResult build_quads(const Part& part, const CutGraph& graph, const QuadOptions& options) {
   return QuadBuilder(part, graph, options).run();
+}
+
+std::size_t flip_edges(const Part& part, QuadMesh& mesh) {
+  using Edge = std::pair<std::uint32_t, std::uint32_t>;
+  std::size_t flips = 0;
+  for (int pass = 0; pass < kFlipPasses; ++pass) {
+    // Interior edges of a patch: used twice in it, by two quads.
+    std::map<std::pair<std::uint32_t, Edge>, std::vector<std::uint32_t>> sharing;
+    for (std::uint32_t q = 0; q < mesh.elements.size(); ++q) {
+      const MeshElement& e = mesh.elements[q];
+      for (std::size_t k = 0; k < 4; ++k)
+        sharing[{e.patch.value, std::minmax(e.nodes[k], e.nodes[(k + 1) % 4])}].push_back(q);
+    }
+    auto jacobian = [&](const Frame& frame, const std::array<std::uint32_t, 4>& x) {
+      return mesher_detail::min_scaled_jacobian(frame.to_2d(mesh.nodes[x[0]]), frame.to_2d(mesh.nodes[x[1]]),
+                                                frame.to_2d(mesh.nodes[x[2]]), frame.to_2d(mesh.nodes[x[3]]));
+    };
+    std::vector<bool> touched(mesh.elements.size(), false);
+    std::size_t done = 0;
+    for (const auto& [key, qs] : sharing) {
+      if (qs.size() != 2 || touched[qs[0]] || touched[qs[1]]) continue;
+      MeshElement& e1 = mesh.elements[qs[0]];
+      MeshElement& e2 = mesh.elements[qs[1]];
+      const Frame& frame = part.patches[e1.patch.index()].frame;
+      // The hexagon: e1 from the edge's second node round to its first, then e2 likewise
+      // (both quads run the same way, so the shared edge runs opposite ways in them).
+      const auto [a, b] = key.second;
+      auto from = [](const MeshElement& e, std::uint32_t v) {
+        std::size_t k = 0;
+        while (e.nodes[k] != v) ++k;
+        return k;
+      };
+      const bool ab_in_e1 = e1.nodes[(from(e1, a) + 1) % 4] == b;
+      const std::uint32_t s = ab_in_e1 ? b : a, t = ab_in_e1 ? a : b;  // e1 runs t -> s
+      std::array<std::uint32_t, 6> hex;
+      const std::size_t i1 = from(e1, s), i2 = from(e2, t);
+      for (std::size_t k = 0; k < 3; ++k) hex[k] = e1.nodes[(i1 + k) % 4];      // s .. t's predecessor
+      for (std::size_t k = 0; k < 3; ++k) hex[3 + k] = e2.nodes[(i2 + k) % 4];  // t .. s's predecessor
+      std::array<std::uint32_t, 6> sorted = hex;
+      std::sort(sorted.begin(), sorted.end());
+      if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
+      // Now e1 = hex[0..3] (s, x, y, t) and e2 = hex[3..0] (t, u, w, s): diagonal 0-3.
+      const double now = std::min(jacobian(frame, e1.nodes), jacobian(frame, e2.nodes));
+      if (now >= kFlipBelow) continue;
+      double best = now + kFlipGain;
+      std::size_t pick = 0;
+      for (std::size_t d = 1; d < 3; ++d) {
+        const std::array<std::uint32_t, 4> q1{hex[d], hex[d + 1], hex[d + 2], hex[d + 3]};
+        const std::array<std::uint32_t, 4> q2{hex[(d + 3) % 6], hex[(d + 4) % 6], hex[(d + 5) % 6], hex[d]};
+        const double j = std::min(jacobian(frame, q1), jacobian(frame, q2));
+        if (j > best) {
+          best = j;
+          pick = d;
+        }
+      }
+      if (pick == 0) continue;
+      e1.nodes = {hex[pick], hex[pick + 1], hex[pick + 2], hex[pick + 3]};
+      e2.nodes = {hex[(pick + 3) % 6], hex[(pick + 4) % 6], hex[(pick + 5) % 6], hex[pick]};
+      touched[qs[0]] = touched[qs[1]] = true;
+      ++done;
+    }
+    flips += done;
+    if (done == 0) break;
+  }
+  return flips;
 }
 
 void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations) {

@@ -80,6 +80,7 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
   QuadResult quads = build_quads(part, graph, qo);
   r.mesh = std::move(quads.mesh);
   r.stats = quads.stats;
+  r.stats.edge_flips = flip_edges(part, r.mesh);
   r.times.quads = clock.lap();
   if (options.smooth > 0) {
     stage("smooth");

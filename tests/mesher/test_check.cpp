@@ -10,6 +10,8 @@
 #include "laytracks/brep/build.hpp"
 #include "laytracks/io/brep_json.hpp"
 #include "laytracks/mesher/check.hpp"
+#include "laytracks/mesher/build_quads.hpp"
+#include "laytracks/mesher/quality.hpp"
 #include "mesh_builder.hpp"
 #include "test_support.hpp"
 
@@ -445,4 +447,33 @@ TEST_CASE("the node grid finds every point near a segment and every close pair",
   }
   CHECK(brute.size() >= 20);
   CHECK(grid.close_pairs(close) == brute);
+}
+
+TEST_CASE("edge flips re-split a pair of quads along their hexagon's best diagonal", "[check][flip]") {
+  const Part part = load_part(case_path("rect_10x4"));
+  GridMesh g = grid_mesh(part, 1.0);
+  REQUIRE(check_mesh(part, g.mesh).valid());
+  SECTION("a structured grid has nothing to flip") {
+    const QuadMesh before = g.mesh;
+    CHECK(flip_edges(part, g.mesh) == 0);
+    for (std::size_t k = 0; k < before.elements.size(); ++k)
+      CHECK(g.mesh.elements[k].nodes == before.elements[k].nodes);
+  }
+  SECTION("two squares split along the wrong diagonal become two squares again") {
+    // Quads (0, 0) and (1, 0) make a 2 x 1 block A M B / D N C; split along A-C instead of
+    // M-N, the first quad has a flat corner at M (scaled Jacobian 0).
+    const PatchGrid& p = g.grids[0];
+    const std::uint32_t A = p.node(0, 0), M = p.node(1, 0), B = p.node(2, 0);
+    const std::uint32_t C = p.node(2, 1), N = p.node(1, 1), D = p.node(0, 1);
+    g.mesh.elements[p.element(0, 0)].nodes = {A, M, B, C};
+    g.mesh.elements[p.element(1, 0)].nodes = {C, N, D, A};
+    REQUIRE_FALSE(check_mesh(part, g.mesh).valid());  // rule 2: a flat corner
+    const std::size_t count = g.mesh.elements.size();
+    CHECK(flip_edges(part, g.mesh) == 1);
+    CHECK(g.mesh.elements.size() == count);
+    const MeshCheck check = check_mesh(part, g.mesh);
+    INFO(check.report());
+    CHECK(check.valid());
+    CHECK(summarize(part, g.mesh).measures[6].worst == Approx(1.0));
+  }
 }

@@ -34,6 +34,7 @@ struct QuadStats {
   std::size_t dangling_rails = 0;  ///< rail segments left out: their MA end met no other rail
   std::size_t parity_boundary = 0;  ///< boundary pieces given one more edge for parity
   std::size_t parity_rails = 0;     ///< rail segments given one more edge for parity
+  std::size_t edge_flips = 0;       ///< quad pairs re-split by flip_edges
 };
 
 struct QuadResult {
@@ -46,6 +47,14 @@ struct QuadResult {
 /// edge. Throws InternalError when a face cannot be meshed or the parity cannot be made even;
 /// the mesh is not checked here (check_mesh is).
 QuadResult build_quads(const Part& part, const CutGraph& graph, const QuadOptions& options);
+
+/// Edge flips: two quads of one patch sharing an edge make a hexagon, which has three
+/// diagonals that split it into two quads; where the pair's worse quad is below 0.5 and
+/// another diagonal gives a worse quad better by 0.05, the pair is re-split along it (a flat
+/// corner at a boundary node that one quad meets gets an edge into the patch this way). Nodes,
+/// element count and the boundary are unchanged; no quad is made worse than the pair's worst.
+/// Edges in map order, each quad once a pass, up to four passes. Returns the flips made.
+std::size_t flip_edges(const Part& part, QuadMesh& mesh);
 
 /// Smooths the interior nodes of every patch (`iterations` Laplacian sweeps in the patch
 /// frame, then as many untangling sweeps over nodes of quads below 0.3). Nodes on B-Rep edges never move; a move is kept only when no quad around the node
