@@ -919,62 +919,78 @@ QuadResult build_quads(const Part& part, const CutGraph& graph, const QuadOption
 }
 
 std::size_t flip_edges(const Part& part, QuadMesh& mesh) {
-  using Edge = std::pair<std::uint32_t, std::uint32_t>;
   std::size_t flips = 0;
+  const std::size_t nq = mesh.elements.size();
+  auto jacobian = [&](const Frame& frame, const std::array<std::uint32_t, 4>& x) {
+    return mesher_detail::min_scaled_jacobian(frame.to_2d(mesh.nodes[x[0]]), frame.to_2d(mesh.nodes[x[1]]),
+                                              frame.to_2d(mesh.nodes[x[2]]), frame.to_2d(mesh.nodes[x[3]]));
+  };
   for (int pass = 0; pass < kFlipPasses; ++pass) {
-    // Interior edges of a patch: used twice in it, by two quads.
-    std::map<std::pair<std::uint32_t, Edge>, std::vector<std::uint32_t>> sharing;
-    for (std::uint32_t q = 0; q < mesh.elements.size(); ++q) {
-      const MeshElement& e = mesh.elements[q];
-      for (std::size_t k = 0; k < 4; ++k)
-        sharing[{e.patch.value, std::minmax(e.nodes[k], e.nodes[(k + 1) % 4])}].push_back(q);
-    }
-    auto jacobian = [&](const Frame& frame, const std::array<std::uint32_t, 4>& x) {
-      return mesher_detail::min_scaled_jacobian(frame.to_2d(mesh.nodes[x[0]]), frame.to_2d(mesh.nodes[x[1]]),
-                                                frame.to_2d(mesh.nodes[x[2]]), frame.to_2d(mesh.nodes[x[3]]));
-    };
-    std::vector<bool> touched(mesh.elements.size(), false);
+    // The quads at each node (compressed rows), and every quad's worst corner.
+    std::vector<std::uint32_t> start(mesh.nodes.size() + 1, 0), at;
+    for (const MeshElement& e : mesh.elements)
+      for (std::uint32_t v : e.nodes) ++start[v + 1];
+    for (std::size_t v = 0; v < mesh.nodes.size(); ++v) start[v + 1] += start[v];
+    at.resize(start.back());
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for (std::uint32_t q = 0; q < nq; ++q)
+      for (std::uint32_t v : mesh.elements[q].nodes) at[fill[v]++] = q;
+    std::vector<bool> touched(nq, false);
     std::size_t done = 0;
-    for (const auto& [key, qs] : sharing) {
-      if (qs.size() != 2 || touched[qs[0]] || touched[qs[1]]) continue;
-      MeshElement& e1 = mesh.elements[qs[0]];
-      MeshElement& e2 = mesh.elements[qs[1]];
+    for (std::uint32_t q = 0; q < nq; ++q) {
+      if (touched[q]) continue;
+      MeshElement& e1 = mesh.elements[q];
       const Frame& frame = part.patches[e1.patch.index()].frame;
-      // The hexagon: e1 from the edge's second node round to its first, then e2 likewise
-      // (both quads run the same way, so the shared edge runs opposite ways in them).
-      const auto [a, b] = key.second;
-      auto from = [](const MeshElement& e, std::uint32_t v) {
-        std::size_t k = 0;
-        while (e.nodes[k] != v) ++k;
-        return k;
-      };
-      const bool ab_in_e1 = e1.nodes[(from(e1, a) + 1) % 4] == b;
-      const std::uint32_t s = ab_in_e1 ? b : a, t = ab_in_e1 ? a : b;  // e1 runs t -> s
-      std::array<std::uint32_t, 6> hex;
-      const std::size_t i1 = from(e1, s), i2 = from(e2, t);
-      for (std::size_t k = 0; k < 3; ++k) hex[k] = e1.nodes[(i1 + k) % 4];      // s .. t's predecessor
-      for (std::size_t k = 0; k < 3; ++k) hex[3 + k] = e2.nodes[(i2 + k) % 4];  // t .. s's predecessor
-      std::array<std::uint32_t, 6> sorted = hex;
-      std::sort(sorted.begin(), sorted.end());
-      if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
-      // Now e1 = hex[0..3] (s, x, y, t) and e2 = hex[3..0] (t, u, w, s): diagonal 0-3.
-      const double now = std::min(jacobian(frame, e1.nodes), jacobian(frame, e2.nodes));
-      if (now >= kFlipBelow) continue;
-      double best = now + kFlipGain;
-      std::size_t pick = 0;
-      for (std::size_t d = 1; d < 3; ++d) {
-        const std::array<std::uint32_t, 4> q1{hex[d], hex[d + 1], hex[d + 2], hex[d + 3]};
-        const std::array<std::uint32_t, 4> q2{hex[(d + 3) % 6], hex[(d + 4) % 6], hex[(d + 5) % 6], hex[d]};
-        const double j = std::min(jacobian(frame, q1), jacobian(frame, q2));
-        if (j > best) {
-          best = j;
-          pick = d;
+      const double j1 = jacobian(frame, e1.nodes);
+      if (j1 >= kFlipBelow) continue;
+      // Of the pairs q makes with a neighbour across one of its edges, the best re-split.
+      double best = -std::numeric_limits<double>::infinity();
+      std::uint32_t best_other = 0;
+      std::array<std::uint32_t, 6> best_hex{};
+      std::size_t best_d = 0;
+      for (std::size_t k = 0; k < 4; ++k) {
+        const std::uint32_t t = e1.nodes[k], s = e1.nodes[(k + 1) % 4];  // e1 runs t -> s
+        std::uint32_t other = kNone, count = 0;
+        for (std::uint32_t i = start[t]; i < start[t + 1]; ++i) {
+          const std::uint32_t o = at[i];
+          if (o == q || mesh.elements[o].patch.value != e1.patch.value) continue;
+          const auto& x = mesh.elements[o].nodes;
+          if (std::find(x.begin(), x.end(), s) == x.end()) continue;
+          other = o;
+          ++count;
+        }
+        if (count != 1 || touched[other]) continue;  // a patch boundary, or not manifold
+        const MeshElement& e2 = mesh.elements[other];
+        // The hexagon: e1 from s round to t, then e2 from t round to s (the shared edge runs
+        // s -> t in e2). Diagonal 0-3 is the shared edge.
+        std::size_t i2 = 0;
+        while (e2.nodes[i2] != t) ++i2;
+        if (e2.nodes[(i2 + 3) % 4] != s) continue;  // e2 turns the other way: leave it
+        std::array<std::uint32_t, 6> hex;
+        for (std::size_t m = 0; m < 3; ++m) hex[m] = e1.nodes[(k + 1 + m) % 4];
+        for (std::size_t m = 0; m < 3; ++m) hex[3 + m] = e2.nodes[(i2 + m) % 4];
+        std::array<std::uint32_t, 6> sorted = hex;
+        std::sort(sorted.begin(), sorted.end());
+        if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
+        const double now = std::min(j1, jacobian(frame, e2.nodes));
+        for (std::size_t d = 1; d < 3; ++d) {
+          const std::array<std::uint32_t, 4> q1{hex[d], hex[d + 1], hex[d + 2], hex[(d + 3) % 6]};
+          const std::array<std::uint32_t, 4> q2{hex[(d + 3) % 6], hex[(d + 4) % 6], hex[(d + 5) % 6], hex[d]};
+          const double j = std::min(jacobian(frame, q1), jacobian(frame, q2));
+          if (j > now + kFlipGain && j > best) {
+            best = j;
+            best_other = other;
+            best_hex = hex;
+            best_d = d;
+          }
         }
       }
-      if (pick == 0) continue;
-      e1.nodes = {hex[pick], hex[pick + 1], hex[pick + 2], hex[pick + 3]};
-      e2.nodes = {hex[(pick + 3) % 6], hex[(pick + 4) % 6], hex[(pick + 5) % 6], hex[pick]};
-      touched[qs[0]] = touched[qs[1]] = true;
+      if (best_d == 0) continue;
+      const auto& h = best_hex;
+      const std::size_t d = best_d;
+      e1.nodes = {h[d], h[d + 1], h[d + 2], h[(d + 3) % 6]};
+      mesh.elements[best_other].nodes = {h[(d + 3) % 6], h[(d + 4) % 6], h[(d + 5) % 6], h[d]};
+      touched[q] = touched[best_other] = true;
       ++done;
     }
     flips += done;

@@ -86,6 +86,11 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
     stage("smooth");
     r.before_smoothing = summarize(part, r.mesh);
     smooth_mesh(part, r.mesh, options.smooth);
+    // Smoothing moves the nodes the flips were judged on: flip again where that now helps,
+    // and smooth what changed.
+    const std::size_t again = flip_edges(part, r.mesh);
+    r.stats.edge_flips += again;
+    if (again > 0) smooth_mesh(part, r.mesh, options.smooth);
     r.times.smooth = clock.lap();
   }
   stage("check");
