@@ -491,7 +491,7 @@ std::vector<std::array<std::uint32_t, 4>> merge_coarse_pairs(
     for (std::size_t k = 0; k < 3; ++k)
       by_edge[std::minmax(tris[t][k], tris[t][(k + 1) % 3])].push_back(t);
   struct Candidate {
-    double gain;
+    double worst;  // the coarse quad's four quads' worst corner, in kMergeMargin steps
     std::size_t t1, t2;
     std::array<std::uint32_t, 4> quad;
   };
@@ -519,10 +519,10 @@ std::vector<std::array<std::uint32_t, 4>> merge_coarse_pairs(
     if (worst > kites + kMergeMargin)
       candidates.push_back({std::round(worst / kMergeMargin), ts[0], ts[1], q});
   }
-  // Best first; equal gains (symmetric faces) in the order of the diagonals, so every pose of
+  // Best first; equal ones (symmetric faces) in the order of the diagonals, so every pose of
   // a part merges the same pairs.
   std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const Candidate& x, const Candidate& y) { return x.gain > y.gain; });
+                   [](const Candidate& x, const Candidate& y) { return x.worst > y.worst; });
   std::vector<std::array<std::uint32_t, 4>> out;
   std::vector<bool> used(tris.size(), false);
   for (const Candidate& c : candidates) {
