@@ -1184,6 +1184,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
   // The worst quad round v, or -infinity when an edge at v is below its floor: a node whose
   // edge is already that short takes any position that lengthens it, within `floor_j` below.
   // Settled (kJacobianGrain) for the comparisons; `raw` gets the unrounded worst.
+  // The general form, for a node that is more than one corner of a quad (a degenerate quad).
   double raw = 0.0;
   auto worst_at = [&](std::uint32_t v) {
     double w = std::numeric_limits<double>::infinity();
@@ -1197,6 +1198,39 @@ void untangle_nodes(std::vector<Vec2>& pos,
     }
     raw = w;
     return settled(w);
+  };
+  // The usual form: v is one corner of each quad round it, and while v moves (its neighbours
+  // stay) each quad's corner opposite v keeps its value, and the lengths of the two edges
+  // there. `ring` holds, per quad round v, the nodes after, opposite and before v, those two
+  // squared lengths and that corner's value; the other three corners are computed as
+  // min_scaled_jacobian does, term for term, so the values are the same to the last bit.
+  struct Opposite {
+    Vec2 a, c, d;       // the quad's nodes after v, opposite v, before v
+    double ca2, cd2;    // |c - a|^2, |c - d|^2
+    double jc;          // the scaled Jacobian of the corner at c
+  };
+  std::vector<Opposite> ring;
+  const auto corner = [](Vec2 e1, Vec2 e0, double l2) {
+    return l2 > 0.0 ? cross(e1, e0) / std::sqrt(l2) : -1.0;
+  };
+  // The worst corner round v at p (min over its quads, as worst_at's raw), `short_edge` set
+  // when an edge at v is below its floor. With `give_up` finite, it may stop as soon as the
+  // worst so far is below it (then the value returned is only known to be below it).
+  const auto worst_of = [&](Vec2 p, double fl2, double give_up, bool& short_edge) {
+    double w = std::numeric_limits<double>::infinity();
+    short_edge = false;
+    for (const Opposite& o : ring) {
+      const Vec2 ea = o.a - p, ed = o.d - p, pa = p - o.a, pd = p - o.d;
+      const double la = dot(ea, ea), ld = dot(ed, ed);
+      if (la < fl2 || ld < fl2) short_edge = true;
+      w = std::min(w, corner(ea, ed, la * ld));             // at v: e1 = a - v, e0 = d - v
+      w = std::min(w, corner(o.c - o.a, pa, o.ca2 * la));   // at a: e1 = c - a, e0 = v - a
+      w = std::min(w, corner(pd, o.c - o.d, ld * o.cd2));   // at d: e1 = v - d, e0 = c - d
+      w = std::min(w, o.jc);
+      if (w < give_up || (short_edge && give_up > -std::numeric_limits<double>::infinity()))
+        return w;
+    }
+    return w;
   };
   static const Vec2 kDirs[8] = {{1, 0}, {0.7071, 0.7071}, {0, 1}, {-0.7071, 0.7071},
                                 {-1, 0}, {-0.7071, -0.7071}, {0, -1}, {0.7071, -0.7071}};
@@ -1212,18 +1246,50 @@ void untangle_nodes(std::vector<Vec2>& pos,
             step = std::min(step, distance(pos[v], pos[quads[q][(k + 1) % 4]]));
             step = std::min(step, distance(pos[v], pos[quads[q][(k + 3) % 4]]));
           }
-      double current = worst_at(v);
+      bool simple = true;
+      ring.clear();
+      for (std::uint32_t q : around[v]) {
+        const auto& x = quads[q];
+        std::size_t k = 0, count = 0;
+        for (std::size_t i = 0; i < 4; ++i)
+          if (x[i] == v) {
+            k = i;
+            ++count;
+          }
+        if (count != 1) {
+          simple = false;
+          break;
+        }
+        Opposite o;
+        o.a = pos[x[(k + 1) % 4]];
+        o.c = pos[x[(k + 2) % 4]];
+        o.d = pos[x[(k + 3) % 4]];
+        const Vec2 e1 = o.d - o.c, e0 = o.a - o.c;  // the corner at c: e1 to d, e0 to a
+        o.ca2 = dot(o.c - o.a, o.c - o.a);
+        o.cd2 = dot(o.c - o.d, o.c - o.d);
+        o.jc = corner(e1, e0, dot(e1, e1) * dot(e0, e0));
+        ring.push_back(o);
+      }
+      // `before`: the worst quad round v now, whatever its edges; `current` as worst_at.
+      double current = 0.0, before = 0.0;
+      if (simple) {
+        bool short_edge = false;
+        before = worst_of(pos[v], floor2[v], -std::numeric_limits<double>::infinity(), short_edge);
+        current = short_edge ? -std::numeric_limits<double>::infinity() : settled(before);
+      } else {
+        current = worst_at(v);
+        before = std::numeric_limits<double>::infinity();
+        for (std::uint32_t q : around[v]) {
+          const auto& x = quads[q];
+          before = std::min(before, min_scaled_jacobian(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]));
+        }
+      }
       if (current >= target) continue;
       // No move may take the worst quad round v below min(its value now, kSmoothFloor), the
       // floor of the other sweeps. Binding only when v starts with an edge below its floor
       // (current is then -infinity): before, any position with long enough edges was
       // "better", however inverted its quads (tray_ribs, adaptive, dtheta 1: a quad turned
       // clockwise in floor_ne).
-      double before = std::numeric_limits<double>::infinity();
-      for (std::uint32_t q : around[v]) {
-        const auto& x = quads[q];
-        before = std::min(before, min_scaled_jacobian(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]));
-      }
       const double floor_j = std::min(settled(before), kSmoothFloor);
       step *= 0.25;
       Vec2 ref{1.0, 0.0};
@@ -1232,6 +1298,10 @@ void untangle_nodes(std::vector<Vec2>& pos,
           const Vec2 e = pos[quads[around[v].front()][(k + 1) % 4]] - pos[v];
           if (norm(e) > 0.0) ref = (1.0 / norm(e)) * e;
         }
+      // A candidate is taken only when its settled worst w > best + 1e-12 and w >= floor_j;
+      // settled(x) <= x + 1e-9 for the values here (|x| <= 1), so a raw worst below
+      // max(best + 1e-12, floor_j) - kGiveUpMargin cannot be taken and its search may stop.
+      constexpr double kGiveUpMargin = 1e-8;
       for (int shrink = 0; shrink < 6 && step > 0.0; ++shrink, step *= 0.5) {
         bool better = true;
         for (int walk = 0; better && walk < 16; ++walk) {
@@ -1243,11 +1313,20 @@ void untangle_nodes(std::vector<Vec2>& pos,
             // Directions turn with the node's first edge, not with the frame: every pose of a
             // part relaxes the same way.
             const Vec2 d{k.x * ref.x - k.y * ref.y, k.x * ref.y + k.y * ref.x};
-            pos[v] = here + step * d;
-            const double w = worst_at(v);
+            const Vec2 p = here + step * d;
+            double w = 0.0;
+            if (simple) {
+              bool short_edge = false;
+              const double give_up = std::max(best + 1e-12, floor_j) - kGiveUpMargin;
+              raw = worst_of(p, floor2[v], give_up, short_edge);
+              w = short_edge ? -std::numeric_limits<double>::infinity() : settled(raw);
+            } else {
+              pos[v] = p;
+              w = worst_at(v);
+            }
             if (w > best + 1e-12 && w >= floor_j && keeps_sign(before, raw)) {
               best = w;
-              best_pos = pos[v];
+              best_pos = p;
             }
           }
           pos[v] = best_pos;
