@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <optional>
@@ -1104,6 +1105,54 @@ double settled(double jacobian) { return std::round(jacobian / kJacobianGrain) *
 
 bool keeps_sign(double before, double after) { return after > 0.0 || !(before > 0.0); }
 
+/// Which nodes a sweep may pass over: what a sweep does at node v depends on the positions of
+/// v and of the other nodes of its quads (its ring) only, so a node whose last visit left it
+/// where it was, and none of whose ring has moved since, would do the same again: nothing.
+/// Skipping it changes no result, to the last bit.
+class Settled {
+ public:
+  Settled(std::size_t n, const std::vector<std::vector<std::uint32_t>>& around,
+          const std::vector<std::array<std::uint32_t, 4>>& quads)
+      : start_(n + 1, 0), changed_(n, 0), settled_(n, 0) {
+    std::vector<std::uint32_t> r;
+    for (std::uint32_t v = 0; v < n; ++v) {
+      r.clear();
+      for (std::uint32_t q : around[v])
+        for (std::uint32_t u : quads[q])
+          if (u != v) r.push_back(u);
+      std::sort(r.begin(), r.end());
+      r.erase(std::unique(r.begin(), r.end()), r.end());
+      ring_.insert(ring_.end(), r.begin(), r.end());
+      start_[v + 1] = static_cast<std::uint32_t>(ring_.size());
+    }
+  }
+  /// True when a visit of v would leave every node where it is.
+  bool idle(std::uint32_t v) const {
+    const std::uint64_t t = settled_[v];
+    if (t == 0 || changed_[v] >= t) return false;
+    for (std::uint32_t i = start_[v]; i < start_[v + 1]; ++i)
+      if (changed_[ring_[i]] >= t) return false;
+    return true;
+  }
+  /// After a visit of v: whether it moved v (any bit of its position).
+  void visited(std::uint32_t v, bool moved) {
+    ++clock_;
+    if (moved) {
+      changed_[v] = clock_;
+      settled_[v] = 0;
+    } else {
+      settled_[v] = clock_;
+    }
+  }
+
+ private:
+  std::vector<std::uint32_t> start_, ring_;
+  std::vector<std::uint64_t> changed_, settled_;
+  std::uint64_t clock_ = 0;
+};
+
+bool same_bits(Vec2 a, Vec2 b) { return std::memcmp(&a, &b, sizeof(Vec2)) == 0; }
+
 }  // namespace
 
 void smooth_nodes(std::vector<Vec2>& pos,
@@ -1128,26 +1177,42 @@ void smooth_nodes(std::vector<Vec2>& pos,
     const auto& x = quads[q];
     return min_scaled_jacobian(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]);
   };
+  // Every quad's value at the present positions, updated as its nodes move.
+  std::vector<double> value(quads.size());
+  for (std::uint32_t q = 0; q < quads.size(); ++q) value[q] = jac(q);
+  std::vector<double> trial;
+  Settled settled_nodes(n, around, quads);
   for (int it = 0; it < iterations; ++it) {
     bool moved = false;
     for (std::uint32_t v = 0; v < n; ++v) {
-      if (fixed[v] || nbr[v].empty()) continue;
+      if (fixed[v] || nbr[v].empty() || settled_nodes.idle(v)) continue;
       Vec2 avg{0.0, 0.0};
       for (std::uint32_t w : nbr[v]) avg = avg + pos[w];
       avg = (1.0 / static_cast<double>(nbr[v].size())) * avg;
       double before = std::numeric_limits<double>::infinity();
-      for (std::uint32_t q : around[v]) before = std::min(before, jac(q));
+      for (std::uint32_t q : around[v]) before = std::min(before, value[q]);
       const Vec2 old = pos[v];
       pos[v] = avg;
+      // Below min(b, kSmoothFloor) the move is refused (settled(x) <= x + 1e-9 for |x| <= 1):
+      // the quads after the one that goes below it need not be computed.
+      const double b = settled(before);
+      const double give_up = std::min(b, kSmoothFloor) - 1e-8;
       double after = std::numeric_limits<double>::infinity();
-      for (std::uint32_t q : around[v]) after = std::min(after, jac(q));
+      trial.clear();
+      for (std::uint32_t q : around[v]) {
+        trial.push_back(jac(q));
+        after = std::min(after, trial.back());
+        if (after < give_up) break;
+      }
       // Accept when the worst quad around v does not get worse (or stays above the floor).
-      const double b = settled(before), a = settled(after);
+      const double a = settled(after);
       if (a >= std::min(b, kSmoothFloor) && (a >= b || a >= kSmoothFloor) && keeps_sign(before, after)) {
         moved = moved || old != avg;
+        for (std::size_t i = 0; i < trial.size(); ++i) value[around[v][i]] = trial[i];
       } else {
         pos[v] = old;
       }
+      settled_nodes.visited(v, !same_bits(pos[v], old));
     }
     if (!moved) break;
   }
@@ -1219,7 +1284,8 @@ void untangle_nodes(std::vector<Vec2>& pos,
   const auto worst_of = [&](Vec2 p, double fl2, double give_up, bool& short_edge) {
     double w = std::numeric_limits<double>::infinity();
     short_edge = false;
-    for (const Opposite& o : ring) {
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Opposite& o = ring[i];
       const Vec2 ea = o.a - p, ed = o.d - p, pa = p - o.a, pd = p - o.d;
       const double la = dot(ea, ea), ld = dot(ed, ed);
       if (la < fl2 || ld < fl2) short_edge = true;
@@ -1227,116 +1293,128 @@ void untangle_nodes(std::vector<Vec2>& pos,
       w = std::min(w, corner(o.c - o.a, pa, o.ca2 * la));   // at a: e1 = c - a, e0 = v - a
       w = std::min(w, corner(pd, o.c - o.d, ld * o.cd2));   // at d: e1 = v - d, e0 = c - d
       w = std::min(w, o.jc);
-      if (w < give_up || (short_edge && give_up > -std::numeric_limits<double>::infinity()))
+      if (w < give_up || (short_edge && give_up > -std::numeric_limits<double>::infinity())) {
+        // This quad first next time: the search's candidates are near one another, and the
+        // quad that stopped one most likely stops the next (the order changes no minimum).
+        std::swap(ring[i], ring.front());
         return w;
+      }
     }
     return w;
   };
   static const Vec2 kDirs[8] = {{1, 0}, {0.7071, 0.7071}, {0, 1}, {-0.7071, 0.7071},
                                 {-1, 0}, {-0.7071, -0.7071}, {0, -1}, {0.7071, -0.7071}};
-  for (int it = 0; it < iterations; ++it) {
-    bool moved = false;
-    for (std::uint32_t v = 0; v < n; ++v) {
-      if (fixed[v] || around[v].empty()) continue;
-      // Step: a quarter of the shortest edge at v.
-      double step = std::numeric_limits<double>::infinity();
-      for (std::uint32_t q : around[v])
-        for (std::size_t k = 0; k < 4; ++k)
-          if (quads[q][k] == v) {
-            step = std::min(step, distance(pos[v], pos[quads[q][(k + 1) % 4]]));
-            step = std::min(step, distance(pos[v], pos[quads[q][(k + 3) % 4]]));
-          }
-      bool simple = true;
-      ring.clear();
+  bool moved = false;
+  // One visit of node v: the compass search from where it is.
+  const auto search_node = [&](std::uint32_t v) {
+    // Step: a quarter of the shortest edge at v.
+    double step = std::numeric_limits<double>::infinity();
+    for (std::uint32_t q : around[v])
+      for (std::size_t k = 0; k < 4; ++k)
+        if (quads[q][k] == v) {
+          step = std::min(step, distance(pos[v], pos[quads[q][(k + 1) % 4]]));
+          step = std::min(step, distance(pos[v], pos[quads[q][(k + 3) % 4]]));
+        }
+    bool simple = true;
+    ring.clear();
+    for (std::uint32_t q : around[v]) {
+      const auto& x = quads[q];
+      std::size_t k = 0, count = 0;
+      for (std::size_t i = 0; i < 4; ++i)
+        if (x[i] == v) {
+          k = i;
+          ++count;
+        }
+      if (count != 1) {
+        simple = false;
+        break;
+      }
+      Opposite o;
+      o.a = pos[x[(k + 1) % 4]];
+      o.c = pos[x[(k + 2) % 4]];
+      o.d = pos[x[(k + 3) % 4]];
+      const Vec2 e1 = o.d - o.c, e0 = o.a - o.c;  // the corner at c: e1 to d, e0 to a
+      o.ca2 = dot(o.c - o.a, o.c - o.a);
+      o.cd2 = dot(o.c - o.d, o.c - o.d);
+      o.jc = corner(e1, e0, dot(e1, e1) * dot(e0, e0));
+      ring.push_back(o);
+    }
+    // `before`: the worst quad round v now, whatever its edges; `current` as worst_at.
+    double current = 0.0, before = 0.0;
+    if (simple) {
+      bool short_edge = false;
+      before = worst_of(pos[v], floor2[v], -std::numeric_limits<double>::infinity(), short_edge);
+      current = short_edge ? -std::numeric_limits<double>::infinity() : settled(before);
+    } else {
+      current = worst_at(v);
+      before = std::numeric_limits<double>::infinity();
       for (std::uint32_t q : around[v]) {
         const auto& x = quads[q];
-        std::size_t k = 0, count = 0;
-        for (std::size_t i = 0; i < 4; ++i)
-          if (x[i] == v) {
-            k = i;
-            ++count;
-          }
-        if (count != 1) {
-          simple = false;
-          break;
-        }
-        Opposite o;
-        o.a = pos[x[(k + 1) % 4]];
-        o.c = pos[x[(k + 2) % 4]];
-        o.d = pos[x[(k + 3) % 4]];
-        const Vec2 e1 = o.d - o.c, e0 = o.a - o.c;  // the corner at c: e1 to d, e0 to a
-        o.ca2 = dot(o.c - o.a, o.c - o.a);
-        o.cd2 = dot(o.c - o.d, o.c - o.d);
-        o.jc = corner(e1, e0, dot(e1, e1) * dot(e0, e0));
-        ring.push_back(o);
+        before = std::min(before, min_scaled_jacobian(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]));
       }
-      // `before`: the worst quad round v now, whatever its edges; `current` as worst_at.
-      double current = 0.0, before = 0.0;
-      if (simple) {
-        bool short_edge = false;
-        before = worst_of(pos[v], floor2[v], -std::numeric_limits<double>::infinity(), short_edge);
-        current = short_edge ? -std::numeric_limits<double>::infinity() : settled(before);
-      } else {
-        current = worst_at(v);
-        before = std::numeric_limits<double>::infinity();
-        for (std::uint32_t q : around[v]) {
-          const auto& x = quads[q];
-          before = std::min(before, min_scaled_jacobian(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]));
-        }
+    }
+    if (current >= target) return;
+    // No move may take the worst quad round v below min(its value now, kSmoothFloor), the
+    // floor of the other sweeps. Binding only when v starts with an edge below its floor
+    // (current is then -infinity): before, any position with long enough edges was
+    // "better", however inverted its quads (tray_ribs, adaptive, dtheta 1: a quad turned
+    // clockwise in floor_ne).
+    const double floor_j = std::min(settled(before), kSmoothFloor);
+    step *= 0.25;
+    Vec2 ref{1.0, 0.0};
+    for (std::size_t k = 0; k < 4; ++k)
+      if (quads[around[v].front()][k] == v) {
+        const Vec2 e = pos[quads[around[v].front()][(k + 1) % 4]] - pos[v];
+        if (norm(e) > 0.0) ref = (1.0 / norm(e)) * e;
       }
-      if (current >= target) continue;
-      // No move may take the worst quad round v below min(its value now, kSmoothFloor), the
-      // floor of the other sweeps. Binding only when v starts with an edge below its floor
-      // (current is then -infinity): before, any position with long enough edges was
-      // "better", however inverted its quads (tray_ribs, adaptive, dtheta 1: a quad turned
-      // clockwise in floor_ne).
-      const double floor_j = std::min(settled(before), kSmoothFloor);
-      step *= 0.25;
-      Vec2 ref{1.0, 0.0};
-      for (std::size_t k = 0; k < 4; ++k)
-        if (quads[around[v].front()][k] == v) {
-          const Vec2 e = pos[quads[around[v].front()][(k + 1) % 4]] - pos[v];
-          if (norm(e) > 0.0) ref = (1.0 / norm(e)) * e;
-        }
-      // A candidate is taken only when its settled worst w > best + 1e-12 and w >= floor_j;
-      // settled(x) <= x + 1e-9 for the values here (|x| <= 1), so a raw worst below
-      // max(best + 1e-12, floor_j) - kGiveUpMargin cannot be taken and its search may stop.
-      constexpr double kGiveUpMargin = 1e-8;
-      for (int shrink = 0; shrink < 6 && step > 0.0; ++shrink, step *= 0.5) {
-        bool better = true;
-        for (int walk = 0; better && walk < 16; ++walk) {
-          better = false;
-          const Vec2 here = pos[v];
-          Vec2 best_pos = here;
-          double best = current;
-          for (const Vec2& k : kDirs) {
-            // Directions turn with the node's first edge, not with the frame: every pose of a
-            // part relaxes the same way.
-            const Vec2 d{k.x * ref.x - k.y * ref.y, k.x * ref.y + k.y * ref.x};
-            const Vec2 p = here + step * d;
-            double w = 0.0;
-            if (simple) {
-              bool short_edge = false;
-              const double give_up = std::max(best + 1e-12, floor_j) - kGiveUpMargin;
-              raw = worst_of(p, floor2[v], give_up, short_edge);
-              w = short_edge ? -std::numeric_limits<double>::infinity() : settled(raw);
-            } else {
-              pos[v] = p;
-              w = worst_at(v);
-            }
-            if (w > best + 1e-12 && w >= floor_j && keeps_sign(before, raw)) {
-              best = w;
-              best_pos = p;
-            }
+    // A candidate is taken only when its settled worst w > best + 1e-12 and w >= floor_j;
+    // settled(x) <= x + 1e-9 for the values here (|x| <= 1), so a raw worst below
+    // max(best + 1e-12, floor_j) - kGiveUpMargin cannot be taken and its search may stop.
+    constexpr double kGiveUpMargin = 1e-8;
+    for (int shrink = 0; shrink < 6 && step > 0.0; ++shrink, step *= 0.5) {
+      bool better = true;
+      for (int walk = 0; better && walk < 16; ++walk) {
+        better = false;
+        const Vec2 here = pos[v];
+        Vec2 best_pos = here;
+        double best = current;
+        for (const Vec2& k : kDirs) {
+          // Directions turn with the node's first edge, not with the frame: every pose of a
+          // part relaxes the same way.
+          const Vec2 d{k.x * ref.x - k.y * ref.y, k.x * ref.y + k.y * ref.x};
+          const Vec2 p = here + step * d;
+          double w = 0.0;
+          if (simple) {
+            bool short_edge = false;
+            const double give_up = std::max(best + 1e-12, floor_j) - kGiveUpMargin;
+            raw = worst_of(p, floor2[v], give_up, short_edge);
+            w = short_edge ? -std::numeric_limits<double>::infinity() : settled(raw);
+          } else {
+            pos[v] = p;
+            w = worst_at(v);
           }
-          pos[v] = best_pos;
-          if (best > current + 1e-9) {
-            current = best;
-            better = true;
-            moved = true;
+          if (w > best + 1e-12 && w >= floor_j && keeps_sign(before, raw)) {
+            best = w;
+            best_pos = p;
           }
         }
+        pos[v] = best_pos;
+        if (best > current + 1e-9) {
+          current = best;
+          better = true;
+          moved = true;
+        }
       }
+    }
+  };
+  Settled settled_nodes(n, around, quads);
+  for (int it = 0; it < iterations; ++it) {
+    moved = false;
+    for (std::uint32_t v = 0; v < n; ++v) {
+      if (fixed[v] || around[v].empty() || settled_nodes.idle(v)) continue;
+      const Vec2 start = pos[v];
+      search_node(v);
+      settled_nodes.visited(v, !same_bits(pos[v], start));
     }
     if (!moved) break;
   }
