@@ -378,10 +378,10 @@ int side_of(Vec2 a, Vec2 b, Vec2 c) {
 /// a straight rail, in a pose where its nodes' coordinates are exact) must not be told apart
 /// from nearly collinear ones by the signs of rounding errors (a face of a generated bracket
 /// lost its best diagonal in one pose, and its pairs template went from 49 quads to 112).
-bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t) {
+/// segments_meet given the four sides it reads: d1, d2 = side_of(p, q, r), side_of(p, q, t);
+/// d3, d4 = side_of(r, t, p), side_of(r, t, q) (triangulate has them from its tables).
+bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t, int d1, int d2, int d3, int d4) {
   if (p == r || p == t || q == r || q == t) return false;
-  const int d1 = side_of(p, q, r), d2 = side_of(p, q, t);
-  const int d3 = side_of(r, t, p), d4 = side_of(r, t, q);
   if ((d1 == 0 && d2 == 0) || (d3 == 0 && d4 == 0)) {
     // Collinear: the parameters of the shorter segment's ends along the longer one overlap
     // [0, 1] (touching counts).
@@ -393,6 +393,12 @@ bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t) {
     return std::max(sa, sb) >= -kCollinearSine && std::min(sa, sb) <= 1.0 + kCollinearSine;
   }
   return d1 * d2 <= 0 && d3 * d4 <= 0;
+}
+
+bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t) {
+  if (p == r || p == t || q == r || q == t) return false;
+  return segments_meet(p, q, r, t, side_of(p, q, r), side_of(p, q, t), side_of(r, t, p),
+                       side_of(r, t, q));
 }
 
 bool inside_polygon(Vec2 x, const std::vector<Vec2>& poly) {
@@ -419,6 +425,14 @@ std::vector<std::array<std::uint32_t, 3>> triangulate(const std::vector<Vec2>& p
   const double kNone = -std::numeric_limits<double>::infinity();
   // ok(i, j): i < j, the segment is a polygon edge or a diagonal inside the polygon.
   std::vector<char> ok(m * m, 0);
+  // The sides every test below reads, each computed once: edge_side[k * m + v] is
+  // side_of(poly[k], poly[k + 1], poly[v]); `at` the sides of the nodes from a diagonal, as
+  // far as its test has gone.
+  std::vector<signed char> edge_side(m * m);
+  for (std::uint32_t k = 0; k < m; ++k)
+    for (std::uint32_t v = 0; v < m; ++v)
+      edge_side[k * m + v] = static_cast<signed char>(side_of(poly[k], poly[(k + 1) % m], poly[v]));
+  std::vector<signed char> at(m);
   for (std::uint32_t i = 0; i < m; ++i) {
     for (std::uint32_t j = i + 1; j < m; ++j) {
       if (j == i + 1 || (i == 0 && j == m - 1)) {
@@ -426,15 +440,18 @@ std::vector<std::array<std::uint32_t, 3>> triangulate(const std::vector<Vec2>& p
         continue;
       }
       bool good = inside_polygon(lerp(poly[i], poly[j], 0.5), poly);
+      if (good) at[0] = static_cast<signed char>(side_of(poly[i], poly[j], poly[0]));
       for (std::uint32_t k = 0; k < m && good; ++k) {
         const std::uint32_t l = (k + 1) % m;
-        if (segments_meet(poly[i], poly[j], poly[k], poly[l])) good = false;
+        if (l != 0) at[l] = static_cast<signed char>(side_of(poly[i], poly[j], poly[l]));
+        if (segments_meet(poly[i], poly[j], poly[k], poly[l], at[k], at[l], edge_side[k * m + i],
+                          edge_side[k * m + j]))
+          good = false;
         // A vertex lying on the diagonal blocks it.
         if (k != i && k != j) {
           const Vec2 d = poly[j] - poly[i];
           const double along = dot(poly[k] - poly[i], d);
-          if (side_of(poly[i], poly[j], poly[k]) == 0 && along > 0.0 && along < dot(d, d))
-            good = false;
+          if (at[k] == 0 && along > 0.0 && along < dot(d, d)) good = false;
         }
       }
       ok[i * m + j] = good ? 1 : 0;
