@@ -677,7 +677,11 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
   auto bar = [&] {
     return best.size() < keep ? -std::numeric_limits<double>::infinity() : best.back().score;
   };
-  std::vector<Vec2> half_a, half_b;
+  std::vector<Vec2> half_a, half_b, inner;
+  // No chord scores above 90 less its spacing's penalty (the angles' part is at most 90, and
+  // the rounded operations are monotone): a count whose bound is not above the bar needs no
+  // angles, crossings or clearance.
+  const double top = 0.5 * kPi * kDeg;
   for (std::uint32_t i = 0; i < n; ++i) {
     for (std::uint32_t gap = 2; gap + 2 <= n; ++gap) {
       const std::uint32_t j = (i + gap) % n;
@@ -690,7 +694,10 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
         const auto in = static_cast<std::uint32_t>(count);
         if ((gap + in + 1) % 2 != 0) continue;
         if (gap + 1 + in >= n || n - gap + 1 + in >= n) continue;
-        std::vector<Vec2> inner;
+        const double spacing = len / static_cast<double>(in + 1);
+        const double penalty = 30.0 * std::abs(std::log(spacing / h));
+        if (top - penalty <= bar()) continue;
+        inner.clear();
         for (std::uint32_t k = 1; k <= in; ++k)
           inner.push_back(lerp(poly[i], poly[j], static_cast<double>(k) / (in + 1)));
         const bool kite = in == 1 && (gap == 2 || n - gap == 2);
@@ -707,8 +714,7 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
           continue;
         double score = std::min({ai, angle[i] - ai, aj, angle[j] - aj, 0.5 * kPi}) * kDeg;
         if (score <= bar()) continue;
-        const double spacing = len / static_cast<double>(in + 1);
-        score -= 30.0 * std::abs(std::log(spacing / h));
+        score -= penalty;
         if (score <= bar()) continue;
         if (kite ? crosses_boundary(poly[i], inner[0], i, j) ||
                        crosses_boundary(inner[0], poly[j], i, j) || !inside_polygon(inner[0], poly)
@@ -736,7 +742,7 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
         if (best.size() == keep) best.pop_back();
         const auto at = std::find_if(best.begin(), best.end(),
                                      [&](const Chord& c) { return c.score < score; });
-        best.insert(at, Chord{i, j, std::move(inner), score});
+        best.insert(at, Chord{i, j, inner, score});
       }
     }
   }
