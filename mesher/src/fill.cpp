@@ -697,15 +697,18 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
         const double spacing = len / static_cast<double>(in + 1);
         const double penalty = 30.0 * std::abs(std::log(spacing / h));
         if (top - penalty <= bar()) continue;
-        inner.clear();
-        for (std::uint32_t k = 1; k <= in; ++k)
-          inner.push_back(lerp(poly[i], poly[j], static_cast<double>(k) / (in + 1)));
+        // The inner nodes (made below, once the chord's angles pass): node k at k / (in + 1).
+        const auto inner_node = [&](std::uint32_t k) {
+          return lerp(poly[i], poly[j], static_cast<double>(k) / (in + 1));
+        };
         const bool kite = in == 1 && (gap == 2 || n - gap == 2);
+        Vec2 kite_node{};
         if (kite) {  // push the node away from the corner it cuts off
           const Vec2 corner = poly[gap == 2 ? (i + 1) % n : (j + 1) % n];
-          inner[0] = inner[0] + 0.5 * (inner[0] - corner);
+          kite_node = inner_node(1) + 0.5 * (inner_node(1) - corner);
         }
-        const Vec2 first = in ? inner.front() : poly[j], last = in ? inner.back() : poly[i];
+        const Vec2 first = kite ? kite_node : in ? inner_node(1) : poly[j];
+        const Vec2 last = kite ? kite_node : in ? inner_node(in) : poly[i];
         const double ai = ccw_angle(poly[(i + 1) % n] - poly[i], first - poly[i]);
         const double aj = ccw_angle(poly[(j + 1) % n] - poly[j], last - poly[j]);
         // A chord along a side (collinear nodes: an angle of 0 or 2 pi but for rounding) is none.
@@ -716,6 +719,10 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
         if (score <= bar()) continue;
         score -= penalty;
         if (score <= bar()) continue;
+        inner.clear();
+        if (kite) inner.push_back(kite_node);
+        else
+          for (std::uint32_t k = 1; k <= in; ++k) inner.push_back(inner_node(k));
         if (kite ? crosses_boundary(poly[i], inner[0], i, j) ||
                        crosses_boundary(inner[0], poly[j], i, j) || !inside_polygon(inner[0], poly)
                  : crosses_boundary(poly[i], poly[j], i, j))
@@ -727,17 +734,22 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
           clearance = std::min(clearance, distance(poly[k], poly[i] + t * d));
         }
         if (!kite) score = std::min(score, 90.0 * clearance / (0.6 * spacing));
-        // Halves that are quads already: their worst corner counts.
-        half_a.clear();
-        half_b.clear();
-        for (std::uint32_t k = i; k != j; k = (k + 1) % n) half_a.push_back(poly[k]);
-        half_a.push_back(poly[j]);
-        half_a.insert(half_a.end(), inner.rbegin(), inner.rend());
-        for (std::uint32_t k = j; k != i; k = (k + 1) % n) half_b.push_back(poly[k]);
-        half_b.push_back(poly[i]);
-        half_b.insert(half_b.end(), inner.begin(), inner.end());
-        if (half_a.size() == 4) score = std::min(score, quad_angle_score(half_a));
-        if (half_b.size() == 4) score = std::min(score, quad_angle_score(half_b));
+        // Halves that are quads already (gap + 1 + in and n - gap + 1 + in nodes): their worst
+        // corner counts.
+        if (gap + 1 + in == 4) {
+          half_a.clear();
+          for (std::uint32_t k = i; k != j; k = (k + 1) % n) half_a.push_back(poly[k]);
+          half_a.push_back(poly[j]);
+          half_a.insert(half_a.end(), inner.rbegin(), inner.rend());
+          score = std::min(score, quad_angle_score(half_a));
+        }
+        if (n - gap + 1 + in == 4) {
+          half_b.clear();
+          for (std::uint32_t k = j; k != i; k = (k + 1) % n) half_b.push_back(poly[k]);
+          half_b.push_back(poly[i]);
+          half_b.insert(half_b.end(), inner.begin(), inner.end());
+          score = std::min(score, quad_angle_score(half_b));
+        }
         if (score <= bar() || score == -std::numeric_limits<double>::infinity()) continue;
         if (best.size() == keep) best.pop_back();
         const auto at = std::find_if(best.begin(), best.end(),
