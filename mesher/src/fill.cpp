@@ -56,6 +56,21 @@ namespace {
 using Quad = std::array<std::uint32_t, 4>;
 constexpr std::uint32_t kNoId = 0xffffffffu;
 
+/// The smallest norm() of `vs` (infinity for none), the very value of the min over every
+/// norm() with hypot called only for the vectors whose squared length is within 1e-12 of the
+/// least: one longer than that by its rounded square is longer by hypot too (whose error is
+/// below one ulp, the square's a few). Squares near underflow or overflow take every hypot.
+double shortest_norm(const std::vector<Vec2>& vs) {
+  double least2 = std::numeric_limits<double>::infinity();
+  for (const Vec2& e : vs) least2 = std::min(least2, dot(e, e));
+  const bool plain = least2 > 1e-200 && least2 < 1e200;
+  const double near2 = least2 * (1.0 + 1e-12);
+  double least = std::numeric_limits<double>::infinity();
+  for (const Vec2& e : vs)
+    if (!plain || dot(e, e) <= near2) least = std::min(least, norm(e));
+  return least;
+}
+
 /// A quad with an edge shorter than this x the shortest edge of its face's boundary is scored
 /// as if its scaled Jacobian were smaller in that ratio: the scaled Jacobian does not see
 /// size, and the relaxation could shrink a well-shaped quad to a speck round a node where many
@@ -677,7 +692,7 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
   auto bar = [&] {
     return best.size() < keep ? -std::numeric_limits<double>::infinity() : best.back().score;
   };
-  std::vector<Vec2> half_a, half_b, inner;
+  std::vector<Vec2> half_a, half_b, inner, offsets;
   // No chord scores above 90 less its spacing's penalty (the angles' part is at most 90, and
   // the rounded operations are monotone): a count whose bound is not above the bar needs no
   // angles, crossings or clearance.
@@ -727,13 +742,16 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
                        crosses_boundary(inner[0], poly[j], i, j) || !inside_polygon(inner[0], poly)
                  : crosses_boundary(poly[i], poly[j], i, j))
           continue;
-        double clearance = std::numeric_limits<double>::infinity();
-        for (std::uint32_t k = 0; k < n; ++k) {
-          if (k == i || k == j) continue;
-          const double t = std::clamp(dot(poly[k] - poly[i], d) / (len * len), 0.0, 1.0);
-          clearance = std::min(clearance, distance(poly[k], poly[i] + t * d));
+        if (!kite) {  // a kite's score does not read its clearance
+          offsets.clear();
+          for (std::uint32_t k = 0; k < n; ++k) {
+            if (k == i || k == j) continue;
+            const double t = std::clamp(dot(poly[k] - poly[i], d) / (len * len), 0.0, 1.0);
+            offsets.push_back(poly[k] - (poly[i] + t * d));
+          }
+          const double clearance = shortest_norm(offsets);
+          score = std::min(score, 90.0 * clearance / (0.6 * spacing));
         }
-        if (!kite) score = std::min(score, 90.0 * clearance / (0.6 * spacing));
         // Halves that are quads already (gap + 1 + in and n - gap + 1 + in nodes): their worst
         // corner counts.
         if (gap + 1 + in == 4) {
@@ -1310,6 +1328,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
     double jc;          // the scaled Jacobian of the corner at c
   };
   std::vector<Opposite> ring;
+  std::vector<Vec2> edges;  // the edges at a node, for its step
   const auto corner = [](Vec2 e1, Vec2 e0, double l2) {
     return l2 > 0.0 ? cross(e1, e0) / std::sqrt(l2) : -1.0;
   };
@@ -1342,14 +1361,6 @@ void untangle_nodes(std::vector<Vec2>& pos,
   bool moved = false;
   // One visit of node v: the compass search from where it is.
   const auto search_node = [&](std::uint32_t v) {
-    // Step: a quarter of the shortest edge at v.
-    double step = std::numeric_limits<double>::infinity();
-    for (std::uint32_t q : around[v])
-      for (std::size_t k = 0; k < 4; ++k)
-        if (quads[q][k] == v) {
-          step = std::min(step, distance(pos[v], pos[quads[q][(k + 1) % 4]]));
-          step = std::min(step, distance(pos[v], pos[quads[q][(k + 3) % 4]]));
-        }
     bool simple = true;
     ring.clear();
     for (std::uint32_t q : around[v]) {
@@ -1389,6 +1400,15 @@ void untangle_nodes(std::vector<Vec2>& pos,
       }
     }
     if (current >= target) return;
+    // Step: a quarter of the shortest edge at v.
+    edges.clear();
+    for (std::uint32_t q : around[v])
+      for (std::size_t k = 0; k < 4; ++k)
+        if (quads[q][k] == v) {
+          edges.push_back(pos[v] - pos[quads[q][(k + 1) % 4]]);
+          edges.push_back(pos[v] - pos[quads[q][(k + 3) % 4]]);
+        }
+    double step = shortest_norm(edges);
     // No move may take the worst quad round v below min(its value now, kSmoothFloor), the
     // floor of the other sweeps. Binding only when v starts with an edge below its floor
     // (current is then -infinity): before, any position with long enough edges was
@@ -1400,7 +1420,8 @@ void untangle_nodes(std::vector<Vec2>& pos,
     for (std::size_t k = 0; k < 4; ++k)
       if (quads[around[v].front()][k] == v) {
         const Vec2 e = pos[quads[around[v].front()][(k + 1) % 4]] - pos[v];
-        if (norm(e) > 0.0) ref = (1.0 / norm(e)) * e;
+        const double length = norm(e);
+        if (length > 0.0) ref = (1.0 / length) * e;
       }
     // A candidate is taken only when its settled worst w > best + 1e-12 and w >= floor_j;
     // settled(x) <= x + 1e-9 for the values here (|x| <= 1), so a raw worst below
