@@ -1335,22 +1335,28 @@ void untangle_nodes(std::vector<Vec2>& pos,
   // The worst corner round v at p (min over its quads, as worst_at's raw), `short_edge` set
   // when an edge at v is below its floor. With `give_up` finite, it may stop as soon as the
   // worst so far is below it (then the value returned is only known to be below it).
-  const auto worst_of = [&](Vec2 p, double fl2, double give_up, bool& short_edge) {
+  // `stopped` is set when it stopped so (or at a short edge): the candidate cannot be taken.
+  const auto worst_of = [&](Vec2 p, double fl2, double give_up, bool& short_edge, bool& stopped) {
     double w = std::numeric_limits<double>::infinity();
     short_edge = false;
+    stopped = false;
+    const bool may_stop = give_up > -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < ring.size(); ++i) {
       const Opposite& o = ring[i];
       const Vec2 ea = o.a - p, ed = o.d - p, pa = p - o.a, pd = p - o.d;
       const double la = dot(ea, ea), ld = dot(ed, ed);
       if (la < fl2 || ld < fl2) short_edge = true;
-      w = std::min(w, corner(ea, ed, la * ld));             // at v: e1 = a - v, e0 = d - v
-      w = std::min(w, corner(o.c - o.a, pa, o.ca2 * la));   // at a: e1 = c - a, e0 = v - a
-      w = std::min(w, corner(pd, o.c - o.d, ld * o.cd2));   // at d: e1 = v - d, e0 = c - d
-      w = std::min(w, o.jc);
-      if (w < give_up || (short_edge && give_up > -std::numeric_limits<double>::infinity())) {
+      if (!(short_edge && may_stop)) {
+        w = std::min(w, corner(ea, ed, la * ld));            // at v: e1 = a - v, e0 = d - v
+        w = std::min(w, corner(o.c - o.a, pa, o.ca2 * la));  // at a: e1 = c - a, e0 = v - a
+        w = std::min(w, corner(pd, o.c - o.d, ld * o.cd2));  // at d: e1 = v - d, e0 = c - d
+        w = std::min(w, o.jc);
+      }
+      if (w < give_up || (short_edge && may_stop)) {
         // This quad first next time: the search's candidates are near one another, and the
         // quad that stopped one most likely stops the next (the order changes no minimum).
         std::swap(ring[i], ring.front());
+        stopped = true;
         return w;
       }
     }
@@ -1388,8 +1394,9 @@ void untangle_nodes(std::vector<Vec2>& pos,
     // `before`: the worst quad round v now, whatever its edges; `current` as worst_at.
     double current = 0.0, before = 0.0;
     if (simple) {
-      bool short_edge = false;
-      before = worst_of(pos[v], floor2[v], -std::numeric_limits<double>::infinity(), short_edge);
+      bool short_edge = false, stopped = false;
+      before = worst_of(pos[v], floor2[v], -std::numeric_limits<double>::infinity(), short_edge,
+                        stopped);
       current = short_edge ? -std::numeric_limits<double>::infinity() : settled(before);
     } else {
       current = worst_at(v);
@@ -1427,6 +1434,13 @@ void untangle_nodes(std::vector<Vec2>& pos,
     // settled(x) <= x + 1e-9 for the values here (|x| <= 1), so a raw worst below
     // max(best + 1e-12, floor_j) - kGiveUpMargin cannot be taken and its search may stop.
     constexpr double kGiveUpMargin = 1e-8;
+    // Directions turn with the node's first edge, not with the frame: every pose of a part
+    // relaxes the same way.
+    Vec2 dirs[8];
+    for (std::size_t i = 0; i < 8; ++i) {
+      const Vec2 k = kDirs[i];
+      dirs[i] = {k.x * ref.x - k.y * ref.y, k.x * ref.y + k.y * ref.x};
+    }
     for (int shrink = 0; shrink < 6 && step > 0.0; ++shrink, step *= 0.5) {
       bool better = true;
       for (int walk = 0; better && walk < 16; ++walk) {
@@ -1434,17 +1448,14 @@ void untangle_nodes(std::vector<Vec2>& pos,
         const Vec2 here = pos[v];
         Vec2 best_pos = here;
         double best = current;
-        for (const Vec2& k : kDirs) {
-          // Directions turn with the node's first edge, not with the frame: every pose of a
-          // part relaxes the same way.
-          const Vec2 d{k.x * ref.x - k.y * ref.y, k.x * ref.y + k.y * ref.x};
+        for (const Vec2& d : dirs) {
           const Vec2 p = here + step * d;
           double w = 0.0;
           if (simple) {
-            bool short_edge = false;
+            bool short_edge = false, stopped = false;
             const double give_up = std::max(best + 1e-12, floor_j) - kGiveUpMargin;
-            raw = worst_of(p, floor2[v], give_up, short_edge);
-            w = short_edge ? -std::numeric_limits<double>::infinity() : settled(raw);
+            raw = worst_of(p, floor2[v], give_up, short_edge, stopped);
+            w = short_edge || stopped ? -std::numeric_limits<double>::infinity() : settled(raw);
           } else {
             pos[v] = p;
             w = worst_at(v);
