@@ -457,16 +457,19 @@ std::vector<std::array<std::uint32_t, 3>> triangulate(const std::vector<Vec2>& p
       bool good = inside_polygon(lerp(poly[i], poly[j], 0.5), poly);
       if (good) at[0] = static_cast<signed char>(side_of(poly[i], poly[j], poly[0]));
       for (std::uint32_t k = 0; k < m && good; ++k) {
-        const std::uint32_t l = (k + 1) % m;
+        const std::uint32_t l = k + 1 == m ? 0 : k + 1;
         if (l != 0) at[l] = static_cast<signed char>(side_of(poly[i], poly[j], poly[l]));
-        if (segments_meet(poly[i], poly[j], poly[k], poly[l], at[k], at[l], edge_side[k * m + i],
-                          edge_side[k * m + j]))
+        const int ei = edge_side[k * m + i], ej = edge_side[k * m + j];
+        // Both ends of edge kl strictly on one side of the diagonal, and the diagonal not along
+        // the edge's line: segments_meet is false without its tests.
+        const bool apart = at[k] * at[l] > 0 && !(ei == 0 && ej == 0);
+        if (!apart && segments_meet(poly[i], poly[j], poly[k], poly[l], at[k], at[l], ei, ej))
           good = false;
         // A vertex lying on the diagonal blocks it.
-        if (k != i && k != j) {
+        if (at[k] == 0 && k != i && k != j) {
           const Vec2 d = poly[j] - poly[i];
           const double along = dot(poly[k] - poly[i], d);
-          if (at[k] == 0 && along > 0.0 && along < dot(d, d)) good = false;
+          if (along > 0.0 && along < dot(d, d)) good = false;
         }
       }
       ok[i * m + j] = good ? 1 : 0;
