@@ -1289,6 +1289,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
   // to points.
   std::vector<double> floor_len(n, 0.0);
   for (std::uint32_t v = 0; v < n; ++v) {
+    if (fixed[v]) continue;  // never searched: its floor is never read
     double sum = 0.0;
     int count = 0;
     for (std::uint32_t q : around[v])
@@ -1555,35 +1556,42 @@ void optimize_nodes(std::vector<Vec2>& pos,
     }
     return f;
   };
+  // One visit of node v: a Newton step, halved until it is taken or too small.
+  const auto visit = [&](std::uint32_t v, bool& moved) {
+    Vec2 g;
+    double h[3];
+    const double f0 = objective(v, &g, h);
+    if (!std::isfinite(f0)) return;  // an inverted corner: the untangler's work
+    const double det = h[0] * h[2] - h[1] * h[1];
+    if (!(det > 0.0) || !(h[0] > 0.0)) return;
+    const Vec2 step{-(h[2] * g.x - h[1] * g.y) / det, -(h[0] * g.y - h[1] * g.x) / det};
+    // The Newton decrement -g.step / 2 is the decrease the step promises (dimensionless, the
+    // same in every pose and at every scale): below kOptimizeTolerance the node stays.
+    if (-0.5 * dot(g, step) < kOptimizeTolerance) return;
+    double before = std::numeric_limits<double>::infinity();
+    for (std::uint32_t q : around[v]) before = std::min(before, jac(q));
+    const Vec2 old = pos[v];
+    bool kept = false;
+    // Halve the step until the objective falls and no quad round v goes below the floor.
+    for (double t = 1.0; t > 1e-3 && !kept; t *= 0.5) {
+      pos[v] = old + t * step;
+      if (pos[v] == old) break;
+      if (!(objective(v, nullptr, nullptr) < f0)) continue;
+      double after = std::numeric_limits<double>::infinity();
+      for (std::uint32_t q : around[v]) after = std::min(after, jac(q));
+      kept = settled(after) >= std::min(settled(before), kSmoothFloor) && keeps_sign(before, after);
+    }
+    if (kept) moved = true;
+    else pos[v] = old;
+  };
+  Settled settled_nodes(n, around, quads);
   for (int it = 0; it < iterations; ++it) {
     bool moved = false;
     for (std::uint32_t v = 0; v < n; ++v) {
-      if (fixed[v] || around[v].empty()) continue;
-      Vec2 g;
-      double h[3];
-      const double f0 = objective(v, &g, h);
-      if (!std::isfinite(f0)) continue;  // an inverted corner: the untangler's work
-      const double det = h[0] * h[2] - h[1] * h[1];
-      if (!(det > 0.0) || !(h[0] > 0.0)) continue;
-      const Vec2 step{-(h[2] * g.x - h[1] * g.y) / det, -(h[0] * g.y - h[1] * g.x) / det};
-      // The Newton decrement -g.step / 2 is the decrease the step promises (dimensionless, the
-      // same in every pose and at every scale): below kOptimizeTolerance the node stays.
-      if (-0.5 * dot(g, step) < kOptimizeTolerance) continue;
-      double before = std::numeric_limits<double>::infinity();
-      for (std::uint32_t q : around[v]) before = std::min(before, jac(q));
-      const Vec2 old = pos[v];
-      bool kept = false;
-      // Halve the step until the objective falls and no quad round v goes below the floor.
-      for (double t = 1.0; t > 1e-3 && !kept; t *= 0.5) {
-        pos[v] = old + t * step;
-        if (pos[v] == old) break;
-        if (!(objective(v, nullptr, nullptr) < f0)) continue;
-        double after = std::numeric_limits<double>::infinity();
-        for (std::uint32_t q : around[v]) after = std::min(after, jac(q));
-        kept = settled(after) >= std::min(settled(before), kSmoothFloor) && keeps_sign(before, after);
-      }
-      if (kept) moved = true;
-      else pos[v] = old;
+      if (fixed[v] || around[v].empty() || settled_nodes.idle(v)) continue;
+      const Vec2 start = pos[v];
+      visit(v, moved);
+      settled_nodes.visited(v, !same_bits(pos[v], start));
     }
     if (!moved) break;
   }
