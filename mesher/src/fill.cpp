@@ -696,10 +696,10 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
     return best.size() < keep ? -std::numeric_limits<double>::infinity() : best.back().score;
   };
   std::vector<Vec2> half_a, half_b, inner, offsets;
-  // No chord scores above 90 less its spacing's penalty (the angles' part is at most 90, and
-  // the rounded operations are monotone): a count whose bound is not above the bar needs no
-  // angles, crossings or clearance.
-  const double top = 0.5 * kPi * kDeg;
+  // No chord scores above its cap less its spacing's penalty: the angles' part is at most 90
+  // and at most half the interior angle at either end (min(a, angle - a) <= angle / 2, which
+  // is exact), and the rounded operations are monotone. A count whose bound is not above the
+  // bar needs no angles, crossings or clearance.
   for (std::uint32_t i = 0; i < n; ++i) {
     for (std::uint32_t gap = 2; gap + 2 <= n; ++gap) {
       const std::uint32_t j = (i + gap) % n;
@@ -707,6 +707,7 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
       const Vec2 d = poly[j] - poly[i];
       const double len = norm(d);
       if (len <= 0.0) continue;
+      const double cap = std::min({0.5 * angle[i], 0.5 * angle[j], 0.5 * kPi}) * kDeg;
       const auto ideal = static_cast<std::int64_t>(std::floor(len / h + 0.5)) - 1;
       for (std::int64_t count = std::max<std::int64_t>(0, ideal - 1); count <= ideal + 1; ++count) {
         const auto in = static_cast<std::uint32_t>(count);
@@ -714,7 +715,7 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
         if (gap + 1 + in >= n || n - gap + 1 + in >= n) continue;
         const double spacing = len / static_cast<double>(in + 1);
         const double penalty = 30.0 * std::abs(std::log(spacing / h));
-        if (top - penalty <= bar()) continue;
+        if (cap - penalty <= bar()) continue;
         // The inner nodes (made below, once the chord's angles pass): node k at k / (in + 1).
         const auto inner_node = [&](std::uint32_t k) {
           return lerp(poly[i], poly[j], static_cast<double>(k) / (in + 1));
