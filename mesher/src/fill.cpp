@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <optional>
@@ -54,6 +55,21 @@ namespace {
 
 using Quad = std::array<std::uint32_t, 4>;
 constexpr std::uint32_t kNoId = 0xffffffffu;
+
+/// The smallest norm() of `vs` (infinity for none), the very value of the min over every
+/// norm() with hypot called only for the vectors whose squared length is within 1e-12 of the
+/// least: one longer than that by its rounded square is longer by hypot too (whose error is
+/// below one ulp, the square's a few). Squares near underflow or overflow take every hypot.
+double shortest_norm(const std::vector<Vec2>& vs) {
+  double least2 = std::numeric_limits<double>::infinity();
+  for (const Vec2& e : vs) least2 = std::min(least2, dot(e, e));
+  const bool plain = least2 > 1e-200 && least2 < 1e200;
+  const double near2 = least2 * (1.0 + 1e-12);
+  double least = std::numeric_limits<double>::infinity();
+  for (const Vec2& e : vs)
+    if (!plain || dot(e, e) <= near2) least = std::min(least, norm(e));
+  return least;
+}
 
 /// A quad with an edge shorter than this x the shortest edge of its face's boundary is scored
 /// as if its scaled Jacobian were smaller in that ratio: the scaled Jacobian does not see
@@ -377,10 +393,10 @@ int side_of(Vec2 a, Vec2 b, Vec2 c) {
 /// a straight rail, in a pose where its nodes' coordinates are exact) must not be told apart
 /// from nearly collinear ones by the signs of rounding errors (a face of a generated bracket
 /// lost its best diagonal in one pose, and its pairs template went from 49 quads to 112).
-bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t) {
+/// segments_meet given the four sides it reads: d1, d2 = side_of(p, q, r), side_of(p, q, t);
+/// d3, d4 = side_of(r, t, p), side_of(r, t, q) (triangulate has them from its tables).
+bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t, int d1, int d2, int d3, int d4) {
   if (p == r || p == t || q == r || q == t) return false;
-  const int d1 = side_of(p, q, r), d2 = side_of(p, q, t);
-  const int d3 = side_of(r, t, p), d4 = side_of(r, t, q);
   if ((d1 == 0 && d2 == 0) || (d3 == 0 && d4 == 0)) {
     // Collinear: the parameters of the shorter segment's ends along the longer one overlap
     // [0, 1] (touching counts).
@@ -392,6 +408,12 @@ bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t) {
     return std::max(sa, sb) >= -kCollinearSine && std::min(sa, sb) <= 1.0 + kCollinearSine;
   }
   return d1 * d2 <= 0 && d3 * d4 <= 0;
+}
+
+bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t) {
+  if (p == r || p == t || q == r || q == t) return false;
+  return segments_meet(p, q, r, t, side_of(p, q, r), side_of(p, q, t), side_of(r, t, p),
+                       side_of(r, t, q));
 }
 
 bool inside_polygon(Vec2 x, const std::vector<Vec2>& poly) {
@@ -418,6 +440,14 @@ std::vector<std::array<std::uint32_t, 3>> triangulate(const std::vector<Vec2>& p
   const double kNone = -std::numeric_limits<double>::infinity();
   // ok(i, j): i < j, the segment is a polygon edge or a diagonal inside the polygon.
   std::vector<char> ok(m * m, 0);
+  // The sides every test below reads, each computed once: edge_side[k * m + v] is
+  // side_of(poly[k], poly[k + 1], poly[v]); `at` the sides of the nodes from a diagonal, as
+  // far as its test has gone.
+  std::vector<signed char> edge_side(m * m);
+  for (std::uint32_t k = 0; k < m; ++k)
+    for (std::uint32_t v = 0; v < m; ++v)
+      edge_side[k * m + v] = static_cast<signed char>(side_of(poly[k], poly[(k + 1) % m], poly[v]));
+  std::vector<signed char> at(m);
   for (std::uint32_t i = 0; i < m; ++i) {
     for (std::uint32_t j = i + 1; j < m; ++j) {
       if (j == i + 1 || (i == 0 && j == m - 1)) {
@@ -425,15 +455,21 @@ std::vector<std::array<std::uint32_t, 3>> triangulate(const std::vector<Vec2>& p
         continue;
       }
       bool good = inside_polygon(lerp(poly[i], poly[j], 0.5), poly);
+      if (good) at[0] = static_cast<signed char>(side_of(poly[i], poly[j], poly[0]));
       for (std::uint32_t k = 0; k < m && good; ++k) {
-        const std::uint32_t l = (k + 1) % m;
-        if (segments_meet(poly[i], poly[j], poly[k], poly[l])) good = false;
+        const std::uint32_t l = k + 1 == m ? 0 : k + 1;
+        if (l != 0) at[l] = static_cast<signed char>(side_of(poly[i], poly[j], poly[l]));
+        const int ei = edge_side[k * m + i], ej = edge_side[k * m + j];
+        // Both ends of edge kl strictly on one side of the diagonal, and the diagonal not along
+        // the edge's line: segments_meet is false without its tests.
+        const bool apart = at[k] * at[l] > 0 && !(ei == 0 && ej == 0);
+        if (!apart && segments_meet(poly[i], poly[j], poly[k], poly[l], at[k], at[l], ei, ej))
+          good = false;
         // A vertex lying on the diagonal blocks it.
-        if (k != i && k != j) {
+        if (at[k] == 0 && k != i && k != j) {
           const Vec2 d = poly[j] - poly[i];
           const double along = dot(poly[k] - poly[i], d);
-          if (side_of(poly[i], poly[j], poly[k]) == 0 && along > 0.0 && along < dot(d, d))
-            good = false;
+          if (along > 0.0 && along < dot(d, d)) good = false;
         }
       }
       ok[i * m + j] = good ? 1 : 0;
@@ -734,7 +770,11 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
   auto bar = [&] {
     return best.size() < keep ? -std::numeric_limits<double>::infinity() : best.back().score;
   };
-  std::vector<Vec2> half_a, half_b;
+  std::vector<Vec2> half_a, half_b, inner, offsets;
+  // No chord scores above its cap less its spacing's penalty: the angles' part is at most 90
+  // and at most half the interior angle at either end (min(a, angle - a) <= angle / 2, which
+  // is exact), and the rounded operations are monotone. A count whose bound is not above the
+  // bar needs no angles, crossings or clearance.
   for (std::uint32_t i = 0; i < n; ++i) {
     for (std::uint32_t gap = 2; gap + 2 <= n; ++gap) {
       const std::uint32_t j = (i + gap) % n;
@@ -742,20 +782,27 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
       const Vec2 d = poly[j] - poly[i];
       const double len = norm(d);
       if (len <= 0.0) continue;
+      const double cap = std::min({0.5 * angle[i], 0.5 * angle[j], 0.5 * kPi}) * kDeg;
       const auto ideal = static_cast<std::int64_t>(std::floor(len / h + 0.5)) - 1;
       for (std::int64_t count = std::max<std::int64_t>(0, ideal - 1); count <= ideal + 1; ++count) {
         const auto in = static_cast<std::uint32_t>(count);
         if ((gap + in + 1) % 2 != 0) continue;
         if (gap + 1 + in >= n || n - gap + 1 + in >= n) continue;
-        std::vector<Vec2> inner;
-        for (std::uint32_t k = 1; k <= in; ++k)
-          inner.push_back(lerp(poly[i], poly[j], static_cast<double>(k) / (in + 1)));
+        const double spacing = len / static_cast<double>(in + 1);
+        const double penalty = 30.0 * std::abs(std::log(spacing / h));
+        if (cap - penalty <= bar()) continue;
+        // The inner nodes (made below, once the chord's angles pass): node k at k / (in + 1).
+        const auto inner_node = [&](std::uint32_t k) {
+          return lerp(poly[i], poly[j], static_cast<double>(k) / (in + 1));
+        };
         const bool kite = in == 1 && (gap == 2 || n - gap == 2);
+        Vec2 kite_node{};
         if (kite) {  // push the node away from the corner it cuts off
           const Vec2 corner = poly[gap == 2 ? (i + 1) % n : (j + 1) % n];
-          inner[0] = inner[0] + 0.5 * (inner[0] - corner);
+          kite_node = inner_node(1) + 0.5 * (inner_node(1) - corner);
         }
-        const Vec2 first = in ? inner.front() : poly[j], last = in ? inner.back() : poly[i];
+        const Vec2 first = kite ? kite_node : in ? inner_node(1) : poly[j];
+        const Vec2 last = kite ? kite_node : in ? inner_node(in) : poly[i];
         const double ai = ccw_angle(poly[(i + 1) % n] - poly[i], first - poly[i]);
         const double aj = ccw_angle(poly[(j + 1) % n] - poly[j], last - poly[j]);
         // A chord along a side (collinear nodes: an angle of 0 or 2 pi but for rounding) is none.
@@ -764,36 +811,47 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
           continue;
         double score = std::min({ai, angle[i] - ai, aj, angle[j] - aj, 0.5 * kPi}) * kDeg;
         if (score <= bar()) continue;
-        const double spacing = len / static_cast<double>(in + 1);
-        score -= 30.0 * std::abs(std::log(spacing / h));
+        score -= penalty;
         if (score <= bar()) continue;
+        inner.clear();
+        if (kite) inner.push_back(kite_node);
+        else
+          for (std::uint32_t k = 1; k <= in; ++k) inner.push_back(inner_node(k));
         if (kite ? crosses_boundary(poly[i], inner[0], i, j) ||
                        crosses_boundary(inner[0], poly[j], i, j) || !inside_polygon(inner[0], poly)
                  : crosses_boundary(poly[i], poly[j], i, j))
           continue;
-        double clearance = std::numeric_limits<double>::infinity();
-        for (std::uint32_t k = 0; k < n; ++k) {
-          if (k == i || k == j) continue;
-          const double t = std::clamp(dot(poly[k] - poly[i], d) / (len * len), 0.0, 1.0);
-          clearance = std::min(clearance, distance(poly[k], poly[i] + t * d));
+        if (!kite) {  // a kite's score does not read its clearance
+          offsets.clear();
+          for (std::uint32_t k = 0; k < n; ++k) {
+            if (k == i || k == j) continue;
+            const double t = std::clamp(dot(poly[k] - poly[i], d) / (len * len), 0.0, 1.0);
+            offsets.push_back(poly[k] - (poly[i] + t * d));
+          }
+          const double clearance = shortest_norm(offsets);
+          score = std::min(score, 90.0 * clearance / (0.6 * spacing));
         }
-        if (!kite) score = std::min(score, 90.0 * clearance / (0.6 * spacing));
-        // Halves that are quads already: their worst corner counts.
-        half_a.clear();
-        half_b.clear();
-        for (std::uint32_t k = i; k != j; k = (k + 1) % n) half_a.push_back(poly[k]);
-        half_a.push_back(poly[j]);
-        half_a.insert(half_a.end(), inner.rbegin(), inner.rend());
-        for (std::uint32_t k = j; k != i; k = (k + 1) % n) half_b.push_back(poly[k]);
-        half_b.push_back(poly[i]);
-        half_b.insert(half_b.end(), inner.begin(), inner.end());
-        if (half_a.size() == 4) score = std::min(score, quad_angle_score(half_a));
-        if (half_b.size() == 4) score = std::min(score, quad_angle_score(half_b));
+        // Halves that are quads already (gap + 1 + in and n - gap + 1 + in nodes): their worst
+        // corner counts.
+        if (gap + 1 + in == 4) {
+          half_a.clear();
+          for (std::uint32_t k = i; k != j; k = (k + 1) % n) half_a.push_back(poly[k]);
+          half_a.push_back(poly[j]);
+          half_a.insert(half_a.end(), inner.rbegin(), inner.rend());
+          score = std::min(score, quad_angle_score(half_a));
+        }
+        if (n - gap + 1 + in == 4) {
+          half_b.clear();
+          for (std::uint32_t k = j; k != i; k = (k + 1) % n) half_b.push_back(poly[k]);
+          half_b.push_back(poly[i]);
+          half_b.insert(half_b.end(), inner.begin(), inner.end());
+          score = std::min(score, quad_angle_score(half_b));
+        }
         if (score <= bar() || score == -std::numeric_limits<double>::infinity()) continue;
         if (best.size() == keep) best.pop_back();
         const auto at = std::find_if(best.begin(), best.end(),
                                      [&](const Chord& c) { return c.score < score; });
-        best.insert(at, Chord{i, j, std::move(inner), score});
+        best.insert(at, Chord{i, j, inner, score});
       }
     }
   }
@@ -1216,6 +1274,54 @@ double settled(double jacobian) { return std::round(jacobian / kJacobianGrain) *
 
 bool keeps_sign(double before, double after) { return after > 0.0 || !(before > 0.0); }
 
+/// Which nodes a sweep may pass over: what a sweep does at node v depends on the positions of
+/// v and of the other nodes of its quads (its ring) only, so a node whose last visit left it
+/// where it was, and none of whose ring has moved since, would do the same again: nothing.
+/// Skipping it changes no result, to the last bit.
+class Settled {
+ public:
+  Settled(std::size_t n, const std::vector<std::vector<std::uint32_t>>& around,
+          const std::vector<std::array<std::uint32_t, 4>>& quads)
+      : start_(n + 1, 0), changed_(n, 0), settled_(n, 0) {
+    std::vector<std::uint32_t> r;
+    for (std::uint32_t v = 0; v < n; ++v) {
+      r.clear();
+      for (std::uint32_t q : around[v])
+        for (std::uint32_t u : quads[q])
+          if (u != v) r.push_back(u);
+      std::sort(r.begin(), r.end());
+      r.erase(std::unique(r.begin(), r.end()), r.end());
+      ring_.insert(ring_.end(), r.begin(), r.end());
+      start_[v + 1] = static_cast<std::uint32_t>(ring_.size());
+    }
+  }
+  /// True when a visit of v would leave every node where it is.
+  bool idle(std::uint32_t v) const {
+    const std::uint64_t t = settled_[v];
+    if (t == 0 || changed_[v] >= t) return false;
+    for (std::uint32_t i = start_[v]; i < start_[v + 1]; ++i)
+      if (changed_[ring_[i]] >= t) return false;
+    return true;
+  }
+  /// After a visit of v: whether it moved v (any bit of its position).
+  void visited(std::uint32_t v, bool moved) {
+    ++clock_;
+    if (moved) {
+      changed_[v] = clock_;
+      settled_[v] = 0;
+    } else {
+      settled_[v] = clock_;
+    }
+  }
+
+ private:
+  std::vector<std::uint32_t> start_, ring_;
+  std::vector<std::uint64_t> changed_, settled_;
+  std::uint64_t clock_ = 0;
+};
+
+bool same_bits(Vec2 a, Vec2 b) { return std::memcmp(&a, &b, sizeof(Vec2)) == 0; }
+
 }  // namespace
 
 void smooth_nodes(std::vector<Vec2>& pos,
@@ -1240,26 +1346,42 @@ void smooth_nodes(std::vector<Vec2>& pos,
     const auto& x = quads[q];
     return min_scaled_jacobian(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]);
   };
+  // Every quad's value at the present positions, updated as its nodes move.
+  std::vector<double> value(quads.size());
+  for (std::uint32_t q = 0; q < quads.size(); ++q) value[q] = jac(q);
+  std::vector<double> trial;
+  Settled settled_nodes(n, around, quads);
   for (int it = 0; it < iterations; ++it) {
     bool moved = false;
     for (std::uint32_t v = 0; v < n; ++v) {
-      if (fixed[v] || nbr[v].empty()) continue;
+      if (fixed[v] || nbr[v].empty() || settled_nodes.idle(v)) continue;
       Vec2 avg{0.0, 0.0};
       for (std::uint32_t w : nbr[v]) avg = avg + pos[w];
       avg = (1.0 / static_cast<double>(nbr[v].size())) * avg;
       double before = std::numeric_limits<double>::infinity();
-      for (std::uint32_t q : around[v]) before = std::min(before, jac(q));
+      for (std::uint32_t q : around[v]) before = std::min(before, value[q]);
       const Vec2 old = pos[v];
       pos[v] = avg;
+      // Below min(b, kSmoothFloor) the move is refused (settled(x) <= x + 1e-9 for |x| <= 1):
+      // the quads after the one that goes below it need not be computed.
+      const double b = settled(before);
+      const double give_up = std::min(b, kSmoothFloor) - 1e-8;
       double after = std::numeric_limits<double>::infinity();
-      for (std::uint32_t q : around[v]) after = std::min(after, jac(q));
+      trial.clear();
+      for (std::uint32_t q : around[v]) {
+        trial.push_back(jac(q));
+        after = std::min(after, trial.back());
+        if (after < give_up) break;
+      }
       // Accept when the worst quad around v does not get worse (or stays above the floor).
-      const double b = settled(before), a = settled(after);
+      const double a = settled(after);
       if (a >= std::min(b, kSmoothFloor) && (a >= b || a >= kSmoothFloor) && keeps_sign(before, after)) {
         moved = moved || old != avg;
+        for (std::size_t i = 0; i < trial.size(); ++i) value[around[v][i]] = trial[i];
       } else {
         pos[v] = old;
       }
+      settled_nodes.visited(v, !same_bits(pos[v], old));
     }
     if (!moved) break;
   }
@@ -1280,6 +1402,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
   // to points.
   std::vector<double> floor_len(n, 0.0);
   for (std::uint32_t v = 0; v < n; ++v) {
+    if (fixed[v]) continue;  // never searched: its floor is never read
     double sum = 0.0;
     int count = 0;
     for (std::uint32_t q : around[v])
@@ -1296,6 +1419,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
   // The worst quad round v, or -infinity when an edge at v is below its floor: a node whose
   // edge is already that short takes any position that lengthens it, within `floor_j` below.
   // Settled (kJacobianGrain) for the comparisons; `raw` gets the unrounded worst.
+  // The general form, for a node that is more than one corner of a quad (a degenerate quad).
   double raw = 0.0;
   auto worst_at = [&](std::uint32_t v) {
     double w = std::numeric_limits<double>::infinity();
@@ -1310,66 +1434,171 @@ void untangle_nodes(std::vector<Vec2>& pos,
     raw = w;
     return settled(w);
   };
+  // The usual form: v is one corner of each quad round it, and while v moves (its neighbours
+  // stay) each quad's corner opposite v keeps its value, and the lengths of the two edges
+  // there. `ring` holds, per quad round v, the nodes after, opposite and before v, those two
+  // squared lengths and that corner's value; the other three corners are computed as
+  // min_scaled_jacobian does, term for term, so the values are the same to the last bit.
+  struct Opposite {
+    Vec2 a, c, d;       // the quad's nodes after v, opposite v, before v
+    double ca2, cd2;    // |c - a|^2, |c - d|^2
+    double jc;          // the scaled Jacobian of the corner at c
+  };
+  std::vector<Opposite> ring;
+  std::vector<Vec2> edges;  // the edges at a node, for its step
+  const auto corner = [](Vec2 e1, Vec2 e0, double l2) {
+    return l2 > 0.0 ? cross(e1, e0) / std::sqrt(l2) : -1.0;
+  };
+  // The worst corner round v at p (min over its quads, as worst_at's raw), `short_edge` set
+  // when an edge at v is below its floor. With `give_up` finite, it may stop as soon as the
+  // worst so far is below it (then the value returned is only known to be below it).
+  // `stopped` is set when it stopped so (or at a short edge): the candidate cannot be taken.
+  const auto worst_of = [&](Vec2 p, double fl2, double give_up, bool& short_edge, bool& stopped) {
+    double w = std::numeric_limits<double>::infinity();
+    short_edge = false;
+    stopped = false;
+    const bool may_stop = give_up > -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Opposite& o = ring[i];
+      const Vec2 ea = o.a - p, ed = o.d - p, pa = p - o.a, pd = p - o.d;
+      const double la = dot(ea, ea), ld = dot(ed, ed);
+      if (la < fl2 || ld < fl2) short_edge = true;
+      if (!(short_edge && may_stop)) {
+        w = std::min(w, corner(ea, ed, la * ld));            // at v: e1 = a - v, e0 = d - v
+        w = std::min(w, corner(o.c - o.a, pa, o.ca2 * la));  // at a: e1 = c - a, e0 = v - a
+        w = std::min(w, corner(pd, o.c - o.d, ld * o.cd2));  // at d: e1 = v - d, e0 = c - d
+        w = std::min(w, o.jc);
+      }
+      if (w < give_up || (short_edge && may_stop)) {
+        // This quad first next time: the search's candidates are near one another, and the
+        // quad that stopped one most likely stops the next (the order changes no minimum).
+        std::swap(ring[i], ring.front());
+        stopped = true;
+        return w;
+      }
+    }
+    return w;
+  };
   static const Vec2 kDirs[8] = {{1, 0}, {0.7071, 0.7071}, {0, 1}, {-0.7071, 0.7071},
                                 {-1, 0}, {-0.7071, -0.7071}, {0, -1}, {0.7071, -0.7071}};
-  for (int it = 0; it < iterations; ++it) {
-    bool moved = false;
-    for (std::uint32_t v = 0; v < n; ++v) {
-      if (fixed[v] || around[v].empty()) continue;
-      // Step: a quarter of the shortest edge at v.
-      double step = std::numeric_limits<double>::infinity();
-      for (std::uint32_t q : around[v])
-        for (std::size_t k = 0; k < 4; ++k)
-          if (quads[q][k] == v) {
-            step = std::min(step, distance(pos[v], pos[quads[q][(k + 1) % 4]]));
-            step = std::min(step, distance(pos[v], pos[quads[q][(k + 3) % 4]]));
-          }
-      double current = worst_at(v);
-      if (current >= target) continue;
-      // No move may take the worst quad round v below min(its value now, kSmoothFloor), the
-      // floor of the other sweeps. Binding only when v starts with an edge below its floor
-      // (current is then -infinity): before, any position with long enough edges was
-      // "better", however inverted its quads (tray_ribs, adaptive, dtheta 1: a quad turned
-      // clockwise in floor_ne).
-      double before = std::numeric_limits<double>::infinity();
+  bool moved = false;
+  // One visit of node v: the compass search from where it is.
+  const auto search_node = [&](std::uint32_t v) {
+    bool simple = true;
+    ring.clear();
+    for (std::uint32_t q : around[v]) {
+      const auto& x = quads[q];
+      std::size_t k = 0, count = 0;
+      for (std::size_t i = 0; i < 4; ++i)
+        if (x[i] == v) {
+          k = i;
+          ++count;
+        }
+      if (count != 1) {
+        simple = false;
+        break;
+      }
+      Opposite o;
+      o.a = pos[x[(k + 1) % 4]];
+      o.c = pos[x[(k + 2) % 4]];
+      o.d = pos[x[(k + 3) % 4]];
+      const Vec2 e1 = o.d - o.c, e0 = o.a - o.c;  // the corner at c: e1 to d, e0 to a
+      o.ca2 = dot(o.c - o.a, o.c - o.a);
+      o.cd2 = dot(o.c - o.d, o.c - o.d);
+      o.jc = corner(e1, e0, dot(e1, e1) * dot(e0, e0));
+      ring.push_back(o);
+    }
+    // `before`: the worst quad round v now, whatever its edges; `current` as worst_at.
+    double current = 0.0, before = 0.0;
+    if (simple) {
+      bool short_edge = false, stopped = false;
+      before = worst_of(pos[v], floor2[v], -std::numeric_limits<double>::infinity(), short_edge,
+                        stopped);
+      current = short_edge ? -std::numeric_limits<double>::infinity() : settled(before);
+    } else {
+      current = worst_at(v);
+      before = std::numeric_limits<double>::infinity();
       for (std::uint32_t q : around[v]) {
         const auto& x = quads[q];
         before = std::min(before, min_scaled_jacobian(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]));
       }
-      const double floor_j = std::min(settled(before), kSmoothFloor);
-      step *= 0.25;
-      Vec2 ref{1.0, 0.0};
+    }
+    if (current >= target) return;
+    // Step: a quarter of the shortest edge at v.
+    edges.clear();
+    for (std::uint32_t q : around[v])
       for (std::size_t k = 0; k < 4; ++k)
-        if (quads[around[v].front()][k] == v) {
-          const Vec2 e = pos[quads[around[v].front()][(k + 1) % 4]] - pos[v];
-          if (norm(e) > 0.0) ref = (1.0 / norm(e)) * e;
+        if (quads[q][k] == v) {
+          edges.push_back(pos[v] - pos[quads[q][(k + 1) % 4]]);
+          edges.push_back(pos[v] - pos[quads[q][(k + 3) % 4]]);
         }
-      for (int shrink = 0; shrink < 6 && step > 0.0; ++shrink, step *= 0.5) {
-        bool better = true;
-        for (int walk = 0; better && walk < 16; ++walk) {
-          better = false;
-          const Vec2 here = pos[v];
-          Vec2 best_pos = here;
-          double best = current;
-          for (const Vec2& k : kDirs) {
-            // Directions turn with the node's first edge, not with the frame: every pose of a
-            // part relaxes the same way.
-            const Vec2 d{k.x * ref.x - k.y * ref.y, k.x * ref.y + k.y * ref.x};
-            pos[v] = here + step * d;
-            const double w = worst_at(v);
-            if (w > best + 1e-12 && w >= floor_j && keeps_sign(before, raw)) {
-              best = w;
-              best_pos = pos[v];
-            }
+    double step = shortest_norm(edges);
+    // No move may take the worst quad round v below min(its value now, kSmoothFloor), the
+    // floor of the other sweeps. Binding only when v starts with an edge below its floor
+    // (current is then -infinity): before, any position with long enough edges was
+    // "better", however inverted its quads (tray_ribs, adaptive, dtheta 1: a quad turned
+    // clockwise in floor_ne).
+    const double floor_j = std::min(settled(before), kSmoothFloor);
+    step *= 0.25;
+    Vec2 ref{1.0, 0.0};
+    for (std::size_t k = 0; k < 4; ++k)
+      if (quads[around[v].front()][k] == v) {
+        const Vec2 e = pos[quads[around[v].front()][(k + 1) % 4]] - pos[v];
+        const double length = norm(e);
+        if (length > 0.0) ref = (1.0 / length) * e;
+      }
+    // A candidate is taken only when its settled worst w > best + 1e-12 and w >= floor_j;
+    // settled(x) <= x + 1e-9 for the values here (|x| <= 1), so a raw worst below
+    // max(best + 1e-12, floor_j) - kGiveUpMargin cannot be taken and its search may stop.
+    constexpr double kGiveUpMargin = 1e-8;
+    // Directions turn with the node's first edge, not with the frame: every pose of a part
+    // relaxes the same way.
+    Vec2 dirs[8];
+    for (std::size_t i = 0; i < 8; ++i) {
+      const Vec2 k = kDirs[i];
+      dirs[i] = {k.x * ref.x - k.y * ref.y, k.x * ref.y + k.y * ref.x};
+    }
+    for (int shrink = 0; shrink < 6 && step > 0.0; ++shrink, step *= 0.5) {
+      bool better = true;
+      for (int walk = 0; better && walk < 16; ++walk) {
+        better = false;
+        const Vec2 here = pos[v];
+        Vec2 best_pos = here;
+        double best = current;
+        for (const Vec2& d : dirs) {
+          const Vec2 p = here + step * d;
+          double w = 0.0;
+          if (simple) {
+            bool short_edge = false, stopped = false;
+            const double give_up = std::max(best + 1e-12, floor_j) - kGiveUpMargin;
+            raw = worst_of(p, floor2[v], give_up, short_edge, stopped);
+            w = short_edge || stopped ? -std::numeric_limits<double>::infinity() : settled(raw);
+          } else {
+            pos[v] = p;
+            w = worst_at(v);
           }
-          pos[v] = best_pos;
-          if (best > current + 1e-9) {
-            current = best;
-            better = true;
-            moved = true;
+          if (w > best + 1e-12 && w >= floor_j && keeps_sign(before, raw)) {
+            best = w;
+            best_pos = p;
           }
+        }
+        pos[v] = best_pos;
+        if (best > current + 1e-9) {
+          current = best;
+          better = true;
+          moved = true;
         }
       }
+    }
+  };
+  Settled settled_nodes(n, around, quads);
+  for (int it = 0; it < iterations; ++it) {
+    moved = false;
+    for (std::uint32_t v = 0; v < n; ++v) {
+      if (fixed[v] || around[v].empty() || settled_nodes.idle(v)) continue;
+      const Vec2 start = pos[v];
+      search_node(v);
+      settled_nodes.visited(v, !same_bits(pos[v], start));
     }
     if (!moved) break;
   }
@@ -1440,35 +1669,42 @@ void optimize_nodes(std::vector<Vec2>& pos,
     }
     return f;
   };
+  // One visit of node v: a Newton step, halved until it is taken or too small.
+  const auto visit = [&](std::uint32_t v, bool& moved) {
+    Vec2 g;
+    double h[3];
+    const double f0 = objective(v, &g, h);
+    if (!std::isfinite(f0)) return;  // an inverted corner: the untangler's work
+    const double det = h[0] * h[2] - h[1] * h[1];
+    if (!(det > 0.0) || !(h[0] > 0.0)) return;
+    const Vec2 step{-(h[2] * g.x - h[1] * g.y) / det, -(h[0] * g.y - h[1] * g.x) / det};
+    // The Newton decrement -g.step / 2 is the decrease the step promises (dimensionless, the
+    // same in every pose and at every scale): below kOptimizeTolerance the node stays.
+    if (-0.5 * dot(g, step) < kOptimizeTolerance) return;
+    double before = std::numeric_limits<double>::infinity();
+    for (std::uint32_t q : around[v]) before = std::min(before, jac(q));
+    const Vec2 old = pos[v];
+    bool kept = false;
+    // Halve the step until the objective falls and no quad round v goes below the floor.
+    for (double t = 1.0; t > 1e-3 && !kept; t *= 0.5) {
+      pos[v] = old + t * step;
+      if (pos[v] == old) break;
+      if (!(objective(v, nullptr, nullptr) < f0)) continue;
+      double after = std::numeric_limits<double>::infinity();
+      for (std::uint32_t q : around[v]) after = std::min(after, jac(q));
+      kept = settled(after) >= std::min(settled(before), kSmoothFloor) && keeps_sign(before, after);
+    }
+    if (kept) moved = true;
+    else pos[v] = old;
+  };
+  Settled settled_nodes(n, around, quads);
   for (int it = 0; it < iterations; ++it) {
     bool moved = false;
     for (std::uint32_t v = 0; v < n; ++v) {
-      if (fixed[v] || around[v].empty()) continue;
-      Vec2 g;
-      double h[3];
-      const double f0 = objective(v, &g, h);
-      if (!std::isfinite(f0)) continue;  // an inverted corner: the untangler's work
-      const double det = h[0] * h[2] - h[1] * h[1];
-      if (!(det > 0.0) || !(h[0] > 0.0)) continue;
-      const Vec2 step{-(h[2] * g.x - h[1] * g.y) / det, -(h[0] * g.y - h[1] * g.x) / det};
-      // The Newton decrement -g.step / 2 is the decrease the step promises (dimensionless, the
-      // same in every pose and at every scale): below kOptimizeTolerance the node stays.
-      if (-0.5 * dot(g, step) < kOptimizeTolerance) continue;
-      double before = std::numeric_limits<double>::infinity();
-      for (std::uint32_t q : around[v]) before = std::min(before, jac(q));
-      const Vec2 old = pos[v];
-      bool kept = false;
-      // Halve the step until the objective falls and no quad round v goes below the floor.
-      for (double t = 1.0; t > 1e-3 && !kept; t *= 0.5) {
-        pos[v] = old + t * step;
-        if (pos[v] == old) break;
-        if (!(objective(v, nullptr, nullptr) < f0)) continue;
-        double after = std::numeric_limits<double>::infinity();
-        for (std::uint32_t q : around[v]) after = std::min(after, jac(q));
-        kept = settled(after) >= std::min(settled(before), kSmoothFloor) && keeps_sign(before, after);
-      }
-      if (kept) moved = true;
-      else pos[v] = old;
+      if (fixed[v] || around[v].empty() || settled_nodes.idle(v)) continue;
+      const Vec2 start = pos[v];
+      visit(v, moved);
+      settled_nodes.visited(v, !same_bits(pos[v], start));
     }
     if (!moved) break;
   }
