@@ -26,6 +26,7 @@
 
 #include "fill.hpp"
 #include "laytracks/brep/error.hpp"
+#include "laytracks/brep/union_find.hpp"
 #include "laytracks/cutgraph/adaptive.hpp"
 
 namespace laytracks {
@@ -172,6 +173,7 @@ class QuadBuilder {
     }
     for (std::size_t p = 0; p < np; ++p) {
       if (law_) adaptive_rail_counts(PatchId(p), patches_[p]);
+      bridge_loose_loops(PatchId(p), patches_[p]);
       trace_faces(PatchId(p), patches_[p]);
     }
     fix_parity();
@@ -600,6 +602,110 @@ class QuadBuilder {
       result_.stats.dangling_rails += before - g.edges.size();
       if (before == g.edges.size()) break;
     }
+  }
+
+  /// A loop of the patch that no rail joins to the rest of its graph (a hole whose corridors
+  /// were all narrow, so their rails went) would leave a face with a hole in it, which no
+  /// template meshes. Such a loop (or a group of loops joined only among themselves) gets two
+  /// bridges to the rest: straight rails from two of its nodes to the nearest nodes outside it
+  /// that they reach crossing no edge of the graph, the second as far from the first as it can
+  /// be for its length; a bridge to a boundary node passes through a new axis node at its
+  /// middle, one to an axis node ends there. Mesh edges: its length over the mean boundary
+  /// step at its ends. The two bridges cut the region round the loop into simple faces.
+  void bridge_loose_loops(PatchId pid, PatchGraph& g) {
+    const double tol = kSamePointRel * part_.size;
+    auto side = [&](Vec2 a, Vec2 b, Vec2 c) {
+      const double d = cross(b - a, c - a);
+      return d > tol * norm(b - a) ? 1 : (d < -tol * norm(b - a) ? -1 : 0);
+    };
+    // True when segment pq meets segment rt other than at a shared end node.
+    auto meets = [&](std::uint32_t p, std::uint32_t q, std::uint32_t r, std::uint32_t t) {
+      if (p == r || p == t || q == r || q == t) return false;
+      const Vec2 P = g.nodes[p].p, Q = g.nodes[q].p, R = g.nodes[r].p, T = g.nodes[t].p;
+      const int d1 = side(P, Q, R), d2 = side(P, Q, T), d3 = side(R, T, P), d4 = side(R, T, Q);
+      return d1 * d2 <= 0 && d3 * d4 <= 0;
+    };
+    auto step_at = [&](std::uint32_t v) {  // mean boundary step at node v, or 0
+      double sum = 0.0;
+      int k = 0;
+      for (const CEdge& e : g.edges)
+        if (!e.rail && (e.a == v || e.b == v)) {
+          sum += distance(g.nodes[e.a].p, g.nodes[e.b].p) / edges_[e.edge].count[e.piece];
+          ++k;
+        }
+      return k > 0 ? sum / k : 0.0;
+    };
+    for (std::size_t round = 0; round < g.nodes.size(); ++round) {
+      UnionFind uf(g.nodes.size());
+      for (const CEdge& e : g.edges) uf.unite(e.a, e.b);
+      // Node 0 is on the outer loop (loops are laid outer first).
+      const std::size_t main = uf.find(0);
+      std::size_t loose = kNone;
+      for (std::uint32_t v = 0; v < g.nodes.size() && loose == kNone; ++v)
+        if (uf.find(v) != main) loose = uf.find(v);
+      if (loose == kNone) return;
+      // Candidate bridges: a loose boundary node to any node of another set, nearest first.
+      struct Bridge {
+        double length;
+        std::uint32_t a, b;
+      };
+      std::vector<Bridge> all;
+      for (std::uint32_t a = 0; a < g.nodes.size(); ++a) {
+        if (uf.find(a) != loose || g.nodes[a].ma) continue;
+        for (std::uint32_t b = 0; b < g.nodes.size(); ++b)
+          if (uf.find(b) != loose) all.push_back({distance(g.nodes[a].p, g.nodes[b].p), a, b});
+      }
+      std::sort(all.begin(), all.end(), [](const Bridge& x, const Bridge& y) {
+        return x.length != y.length ? x.length < y.length : std::tie(x.a, x.b) < std::tie(y.a, y.b);
+      });
+      auto clear = [&](const Bridge& br, const Bridge* other) {
+        for (const CEdge& e : g.edges)
+          if (meets(br.a, br.b, e.a, e.b)) return false;
+        return !other || !meets(br.a, br.b, other->a, other->b);
+      };
+      const Bridge* first = nullptr;
+      for (const Bridge& br : all)
+        if (clear(br, nullptr)) {
+          first = &br;
+          break;
+        }
+      if (!first) break;
+      // The second: the clear one (not at the first's ends) that is shortest for its distance
+      // from the first's foot.
+      const Bridge* second = nullptr;
+      double best = std::numeric_limits<double>::infinity();
+      for (const Bridge& br : all) {
+        if (br.a == first->a || br.b == first->b) continue;
+        const double score = br.length - distance(g.nodes[br.a].p, g.nodes[first->a].p);
+        if (score < best && clear(br, first)) {
+          best = score;
+          second = &br;
+        }
+      }
+      if (!second) break;
+      for (const Bridge* br : {first, second}) {
+        const double local = std::max(step_at(br->a), step_at(br->b));
+        const double h = local > 0.0 ? local : h_;
+        auto rail = [&](std::uint32_t from, std::uint32_t to) {
+          CEdge r;
+          r.a = from;
+          r.b = to;
+          r.rail = true;
+          r.count = edges_for(distance(g.nodes[from].p, g.nodes[to].p), h);
+          g.edges.push_back(r);
+        };
+        if (g.nodes[br->b].ma) {
+          rail(br->a, br->b);
+        } else {
+          const auto m = static_cast<std::uint32_t>(g.nodes.size());
+          g.nodes.push_back({lerp(g.nodes[br->a].p, g.nodes[br->b].p, 0.5), kNone, true});
+          rail(br->a, m);
+          rail(br->b, m);
+        }
+      }
+      ++result_.stats.loop_bridges;
+    }
+    (void)pid;
   }
 
   void trace_faces(PatchId pid, PatchGraph& g) {

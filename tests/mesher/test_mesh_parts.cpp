@@ -147,3 +147,29 @@ TEST_CASE("nodes on arcs lie on the circle, and the check holds them to it", "[m
   CHECK(bad.counts[6] > 0);
   CHECK(bad.counts[4] > 0);
 }
+
+TEST_CASE("a hole that no rail reaches is bridged to the rest, in every pose", "[mesh][bridge]") {
+  // Found by the stress generator: a plate with seven hexagonal holes at a coarse size (the
+  // corridors round the middle hole are all narrow, so its rails go), and a wavy outline round
+  // a 40-sided hole. Both were refused ("a region that no rail reaches").
+  const struct {
+    const char* file;
+    std::optional<double> size;
+  } cases[] = {{"hex_holes_loose.json", 3.372536841606217}, {"wavy_hole_loose.json", std::nullopt}};
+  for (const auto& c : cases) {
+    INFO(c.file);
+    const RawPart raw = read_brep_json(test_data_dir() + "/parts/" + c.file);
+    std::optional<std::size_t> quads;
+    for (const Transform& t : {Transform{}, compose(rotation({1.0, 2.0, 3.0}, 0.7), scaling(1e3)),
+                               mirror_x()}) {
+      const Part part = build_part(transformed(raw, t));
+      MeshPartOptions o;
+      if (c.size) o.size = *c.size * (part.size / build_part(raw).size);
+      const MeshPartResult r = mesh_part(part, o);
+      CHECK(r.check.valid());
+      CHECK(r.stats.loop_bridges >= 1);
+      if (!quads) quads = r.mesh.elements.size();
+      CHECK(r.mesh.elements.size() == *quads);
+    }
+  }
+}

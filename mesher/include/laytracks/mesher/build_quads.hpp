@@ -35,6 +35,7 @@ struct QuadStats {
   std::size_t parity_boundary = 0;  ///< boundary pieces given one more edge for parity
   std::size_t parity_rails = 0;     ///< rail segments given one more edge for parity
   std::size_t edge_flips = 0;       ///< quad pairs re-split by flip_edges
+  std::size_t loop_bridges = 0;     ///< loops no rail reached, joined by two bridge rails
 };
 
 struct QuadResult {
