@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <memory>
+#include <sstream>
 
 #include "laytracks/brep/error.hpp"
 #include "laytracks/cutgraph/adaptive.hpp"
@@ -65,6 +66,20 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
   r.adaptive = law != nullptr;
   r.size = law ? law->end_width() : cg.track_width;
   if (law) r.dtheta_deg = law->options().dtheta * 180.0 / kPi;
+  // A size so small that the mesh could not fit in memory is refused before any work (a
+  // rectangle at 1e-10 ran out of memory; at 1e-300 the counts overflowed to a 6-quad mesh).
+  if (!law) {
+    double area = 0.0;
+    for (const Patch& patch : part.patches) area += patch.area;
+    const double estimate = area / (r.size * r.size);
+    if (!(estimate <= kMaxEstimatedQuads)) {
+      std::ostringstream s;
+      s << "element size " << r.size << " would give about " << estimate
+        << " quads (the part's area " << area << " over the size squared); at most "
+        << kMaxEstimatedQuads << " are meshed: choose a larger size";
+      throw InputError(s.str());
+    }
+  }
   const CutGraph graph = build_cut_graph(part, axes, cg);
   if (!graph.problems.empty()) {
     throw InternalError("rails: " + graph.problems.front() + " (" +

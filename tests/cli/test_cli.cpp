@@ -321,6 +321,15 @@ TEST_CASE("mesh refuses what it cannot mesh, writes nothing, and says where", "[
   CHECK(ext.status == 2);
   CHECK_THAT(ext.err, Catch::Contains(".msh"));
   CHECK_FALSE(fs::exists(d / "x.stl"));
+  // A size that would need more quads than memory holds (1e-10 ran out of memory, 1e-300
+  // overflowed to a 6-quad mesh): status 1, before any work, the old file kept.
+  for (const char* size : {"1e-300", "1e-10", "0.0005"}) {
+    const Run tiny = run("mesh " + q(laytracks::test::cases_dir() + "/rect_10x4.json") + " -o " + q(d / "old.msh") +
+                         " --size " + size);
+    CHECK(tiny.status == 1);
+    CHECK_THAT(tiny.err, Catch::Contains("choose a larger size"));
+    CHECK(slurp(d / "old.msh") == "previous content");
+  }
   CHECK(std::distance(fs::directory_iterator(d), fs::directory_iterator()) == 1);
 }
 

@@ -25,6 +25,10 @@ double default_element_size(const Part& part);
 /// Default smoothing sweeps of `laytracks mesh` (docs/mesher.md says why).
 constexpr int kDefaultSmooth = 10;
 
+/// Uniform mode refuses (InputError) an element size that would give more quads than this,
+/// estimated as the part's area over the size squared: about 10 GB of mesh.
+constexpr double kMaxEstimatedQuads = 5e7;
+
 struct MeshPartOptions {
   std::optional<double> size;  ///< element size; default: mesh.size, else default_element_size
   int smooth = kDefaultSmooth;  ///< Laplacian sweeps over interior nodes (0: none)
