@@ -1,5 +1,6 @@
 // Rules 9-11 of build_part(): B-Rep edges, vertices lying inside edges, the file's dual graph.
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <unordered_map>
@@ -37,6 +38,25 @@ std::optional<double> distance_inside(Vec3 p, Vec3 a, Vec3 b) {
   const double t = dot(p - a, ab) / dot(ab, ab);
   if (!(t > 0.0 && t < 1.0)) return std::nullopt;
   return norm((p - a) - t * ab);
+}
+
+/// The distance from p to the piece of `arc`'s circle between its points a and b, or nothing
+/// when p's angle about the centre is not strictly between theirs (a vertex on an arc lies on
+/// the circle, not on the chord the medial axis uses).
+std::optional<double> distance_inside_arc(Vec3 p, const PartArc& arc, Vec3 a, Vec3 b) {
+  const Vec3 axis = cross(arc.e1, arc.e2);
+  auto angle = [&](Vec3 x) {
+    const Vec3 w = x - arc.center;
+    double t = std::atan2(dot(w, arc.e2), dot(w, arc.e1));
+    if (t < 0.0) t += 2.0 * kPi;
+    return t;
+  };
+  const double ta = angle(a), tb = angle(b), tp = angle(p);
+  if (!(tp > std::min(ta, tb) && tp < std::max(ta, tb))) return std::nullopt;
+  const Vec3 w = p - arc.center;
+  const double off = dot(w, axis);
+  const double radial = norm(w - off * axis);
+  return std::hypot(off, radial - arc.radius);
 }
 
 /// The message for vertex v lying inside edge e.
@@ -97,8 +117,20 @@ void check_vertices_on_edges(const BuildState& s) {
   std::vector<Box3> edges;
   for (const BrepEdge& e : s.part.edges) {
     Box3 box;
-    box.add(s.part.vertices[e.a.index()].position);
-    box.add(s.part.vertices[e.b.index()].position);
+    const Vec3 a = s.part.vertices[e.a.index()].position, b = s.part.vertices[e.b.index()].position;
+    box.add(a);
+    box.add(b);
+    if (e.arc >= 0) {
+      // A piece of an arc bulges out of its chord by the sagitta.
+      const double r = s.part.arcs[static_cast<std::size_t>(e.arc)].radius;
+      const double half = 0.5 * norm(b - a);
+      const double sagitta = r - std::sqrt(std::max(0.0, r * r - half * half));
+      const Vec3 bulge{sagitta, sagitta, sagitta};
+      box.add(a - bulge);
+      box.add(b + bulge);
+      box.add(a + bulge);
+      box.add(b - bulge);
+    }
     edges.push_back(box);
   }
   std::optional<std::pair<VertexId, EdgeId>> first;
@@ -107,8 +139,13 @@ void check_vertices_on_edges(const BuildState& s) {
     const VertexId v = ids[i];
     if (v == e.a || v == e.b) continue;
     const auto d =
-        distance_inside(s.part.vertices[v.index()].position, s.part.vertices[e.a.index()].position,
-                        s.part.vertices[e.b.index()].position);
+        e.arc >= 0
+            ? distance_inside_arc(s.part.vertices[v.index()].position,
+                                  s.part.arcs[static_cast<std::size_t>(e.arc)],
+                                  s.part.vertices[e.a.index()].position,
+                                  s.part.vertices[e.b.index()].position)
+            : distance_inside(s.part.vertices[v.index()].position, s.part.vertices[e.a.index()].position,
+                              s.part.vertices[e.b.index()].position);
     if (!d || *d > tol) continue;
     const std::pair<VertexId, EdgeId> found{v, EdgeId(k)};
     if (!first || found < *first) first = found;
