@@ -19,6 +19,7 @@ Part build_part(const RawPart& raw, const BuildOptions& options) {
   detail::shape_polygons(s);
   detail::build_edges(s);
   detail::check_vertices_on_edges(s);
+  detail::check_patch_contacts(s);
   detail::check_dual_graph_and_shells(s);
   return std::move(s.part);
 }

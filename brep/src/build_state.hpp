@@ -79,6 +79,9 @@ void shape_polygons(BuildState& s);
 void build_edges(BuildState& s);
 /// Rule 10: no vertex lies inside an edge without splitting it.
 void check_vertices_on_edges(const BuildState& s);
+/// Patches meet only along shared edges: no edge of one passes through, lies inside or ends
+/// inside another (exact segment tests in the patch's frame, kOnEdge and kPlanarity margins).
+void check_patch_contacts(const BuildState& s);
 /// Rules 11-12: the file's dual_graph agrees with the shared edges; shells.
 void check_dual_graph_and_shells(BuildState& s);
 
