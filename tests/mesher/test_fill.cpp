@@ -7,6 +7,7 @@
 #include <random>
 
 #include "fill.hpp"
+#include "laytracks/mesher/quality.hpp"
 
 using namespace laytracks;
 using namespace laytracks::mesher_detail;
@@ -214,15 +215,9 @@ TEST_CASE("faces with corners get coarse quads split in four, not only kites", "
     const auto nn = static_cast<std::uint32_t>(cycle.size());
     auto pos = [&](std::uint32_t i) { return i < nn ? f.cycle[i] : m.interior[i - nn]; };
     std::size_t tapered = 0;
-    for (const auto& q : m.quads) {
-      double area[4], mean = 0.0;
-      for (std::size_t k = 0; k < 4; ++k) {
-        const Vec2 c = pos(q[k]);
-        area[k] = cross(pos(q[(k + 1) % 4]) - c, pos(q[(k + 3) % 4]) - c);
-        mean += 0.25 * area[k];
-      }
-      if (std::min({area[0], area[1], area[2], area[3]}) <= 0.8 * mean) ++tapered;
-    }
+    auto at = [&](std::uint32_t i) { return Vec3{pos(i).x, pos(i).y, 0.0}; };
+    for (const auto& q : m.quads)  // taper by quality.md's definition
+      if (measure_quad({at(q[0]), at(q[1]), at(q[2]), at(q[3])}, {0.0, 0.0, 1.0}).taper <= 0.8) ++tapered;
     INFO(tapered << " of " << m.quads.size() << " quads tapered");
     CHECK(m.min_jacobian >= kAcceptJacobian);
     // Kites alone: every quad tapered. Here a third of the quads at least are not.
