@@ -50,6 +50,9 @@ constexpr double kMergeBreakRel = 1e-8;
 /// quad with a flat corner at the B-Rep vertex beside it (cgal_sample_0: 0.013). Farther ones
 /// stay: merged with their neighbours' pieces, pieces of about h became single edges of 2 h.
 constexpr double kIdleBreakGap = 0.1;
+/// Breaks closer than this x the element size to the previous break or the edge's end are one
+/// node, used or not (a piece of 0.002 h on a hole left a face no template could fill).
+constexpr double kTinyPiece = 0.01;
 /// The final smoothing's untangler works on every node with a quad below this (the
 /// templates' relaxation stops at kAcceptJacobian, the bound of their choice).
 constexpr double kFinalUntangleTarget = 0.6;
@@ -275,9 +278,11 @@ class QuadBuilder {
       en.t.push_back(0.0);
       en.node.push_back(vertex_node_[un.a.index()]);
       const double len = unit_length(e);
-      const double merge = kMergeBreakRel * part_.size;
       for (const auto& [t, g] : br) {
-        // A break at (or within rounding of) the previous break or the edge's end is that node.
+        // A break at (or within rounding of) the previous break or the edge's end is that node,
+        // and so is one closer than kTinyPiece x the element size: no quad fits such a piece.
+        const double merge =
+            std::max(kMergeBreakRel * part_.size, kTinyPiece * local_size(e, t));
         if ((t - en.t.back()) * len <= merge) {
           gcut_node_[g] = en.node.back();
           continue;

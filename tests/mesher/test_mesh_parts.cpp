@@ -173,3 +173,22 @@ TEST_CASE("a hole that no rail reaches is bridged to the rest, in every pose", "
     }
   }
 }
+
+TEST_CASE("breaks a hundredth of an element apart are one node", "[mesh][bridge]") {
+  // Found by the stress generator: a plate with three holes at 3x its default size (two rails
+  // landing 0.002 h apart on a hole left a face of 28 nodes no template could fill), and two
+  // coplanar patches sharing an arc seam, one with a square hole (sizes 0.642 to 0.702).
+  const struct {
+    const char* file;
+    double size;
+  } cases[] = {{"holes_tiny_piece.json", 1.2408084551918899}, {"arc_seam_hole.json", 0.69}};
+  for (const auto& c : cases) {
+    INFO(c.file);
+    const Part part = build_part(read_brep_json(test_data_dir() + "/parts/" + c.file));
+    MeshPartOptions o;
+    o.size = c.size;
+    const MeshPartResult r = mesh_part(part, o);
+    CHECK(r.check.valid());
+    CHECK(r.quality.measures[6].worst > 0.05);
+  }
+}
