@@ -53,6 +53,10 @@ constexpr double kIdleBreakGap = 0.1;
 /// Breaks closer than this x the element size to the previous break or the edge's end are one
 /// node, used or not (a piece of 0.002 h on a hole left a face no template could fill).
 constexpr double kTinyPiece = 0.01;
+/// drop_disk_rails: at least this many rails, no two neighbours round the centre further apart
+/// than kDiskGap (a regular hexagon's six rails stay: its wedges are good quads).
+constexpr std::size_t kDiskRails = 8;
+constexpr double kDiskGap = 60.0 * kPi / 180.0;
 /// The final smoothing's untangler works on every node with a quad below this (the
 /// templates' relaxation stops at kAcceptJacobian, the bound of their choice).
 constexpr double kFinalUntangleTarget = 0.6;
@@ -483,6 +487,32 @@ class QuadBuilder {
     drop_narrow_fans(g, false);
     drop_narrow_fans(g, true);
     drop_dangling_rails(g);
+    drop_disk_rails(pid, g);
+  }
+
+  /// A patch with one loop whose rails all meet at one MA point, all round it (a disk, a
+  /// polygonised circle: its axis is that point), would be cut into wedges whose quads shrink
+  /// to slivers at the centre. Its rails go: the patch is one face, which the O-grid template
+  /// meshes. Nodes on its edges stay (rails of other patches may land there).
+  void drop_disk_rails(PatchId pid, PatchGraph& g) {
+    if (part_.patches[pid.index()].loops.size() != 1) return;
+    std::uint32_t centre = kNone;
+    std::vector<double> angles;
+    for (const CEdge& e : g.edges) {
+      if (!e.rail) continue;
+      if (centre == kNone) centre = e.b;
+      if (e.b != centre) return;
+      const Vec2 d = g.nodes[e.a].p - g.nodes[e.b].p;
+      angles.push_back(std::atan2(d.y, d.x));
+    }
+    if (angles.size() < kDiskRails) return;
+    std::sort(angles.begin(), angles.end());
+    double widest = angles.front() + 2.0 * kPi - angles.back();
+    for (std::size_t k = 1; k < angles.size(); ++k) widest = std::max(widest, angles[k] - angles[k - 1]);
+    if (widest > kDiskGap) return;
+    g.edges.erase(std::remove_if(g.edges.begin(), g.edges.end(), [](const CEdge& e) { return e.rail; }),
+                  g.edges.end());
+    ++result_.stats.disk_patches;
   }
 
   void add_boundary_edge(PatchGraph& g, std::uint32_t a, std::uint32_t b, std::uint32_t e,

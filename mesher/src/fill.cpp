@@ -34,6 +34,8 @@ const char* to_string(FillKind kind) {
       return "pairs";
     case FillKind::Strip:
       return "strip";
+    case FillKind::Ogrid:
+      return "ogrid";
   }
   return "?";
 }
@@ -1153,6 +1155,100 @@ double quantised(double jacobian) {
   return jacobian > kMinValidJacobian ? step : step - 1e6;
 }
 
+/// O-grid: a round face (every interior angle between kRoundMin and kRoundMax) as a rectangle
+/// of a x b quads in its middle and rings of quads round it: the boundary is read as four
+/// quarters of a, b, a, b edges (n = 2(a + b)), each joined by `layers` rows to one side of
+/// the rectangle, whose corners are the quarters' ends drawn towards the centroid by
+/// kOgridInner. A disk's rails all meet at its centre; without them (drop_disk_rails) its
+/// one face gets this instead of a fan of wedges with slivers at the centre. The quarters
+/// start at each of a few nodes; the best by worst corner wins (the first on ties).
+constexpr double kRoundMin = 120.0 * kPi / 180.0;
+constexpr double kRoundMax = 200.0 * kPi / 180.0;
+constexpr double kOgridInner = 0.6;
+constexpr std::uint32_t kOgridStarts = 4;
+
+std::optional<FaceMesh> fill_ogrid(const FaceInput& face) {
+  const auto n = static_cast<std::uint32_t>(face.cycle.size());
+  if (n < 12 || n % 2 != 0) return std::nullopt;
+  const std::vector<Vec2>& p = face.cycle;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const double a = interior_angle(p, k);
+    if (a < kRoundMin || a > kRoundMax) return std::nullopt;
+  }
+  // The centroid of the polygon's area, and its mean edge.
+  double twice = 0.0, s = 0.0;
+  Vec2 c{0.0, 0.0};
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const Vec2 x = p[k], y = p[(k + 1) % n];
+    const double w = cross(x, y);
+    twice += w;
+    c = c + (w / 3.0) * (x + y);
+    s += distance(x, y) / n;
+  }
+  if (!(twice > 0.0)) return std::nullopt;
+  c = (1.0 / twice) * c;
+  const std::uint32_t a = n / 4, b = n / 2 - a;
+  std::optional<FaceMesh> best;
+  const std::uint32_t tries = std::min<std::uint32_t>(kOgridStarts, a);
+  for (std::uint32_t t = 0; t < tries; ++t) {
+    const std::uint32_t start = t * a / tries;
+    auto at = [&](std::uint32_t i) { return (start + i) % n; };  // boundary node i of the reading
+    const std::array<std::uint32_t, 5> quarter{0, a, a + b, 2 * a + b, n};
+    std::array<Vec2, 4> corner;
+    for (std::size_t k = 0; k < 4; ++k) corner[k] = lerp(c, p[at(quarter[k])], kOgridInner);
+    // The inner polygon: each quarter's nodes at the same fractions of its length along the
+    // rectangle's side.
+    std::vector<Vec2> inner(n);
+    for (std::size_t k = 0; k < 4; ++k) {
+      double total = 0.0;
+      for (std::uint32_t i = quarter[k]; i < quarter[k + 1]; ++i) total += distance(p[at(i)], p[at(i + 1)]);
+      double run = 0.0;
+      for (std::uint32_t i = quarter[k]; i < quarter[k + 1]; ++i) {
+        inner[i] = lerp(corner[k], corner[(k + 1) % 4], total > 0.0 ? run / total : 0.0);
+        run += distance(p[at(i)], p[at(i + 1)]);
+      }
+    }
+    double gap = 0.0;
+    for (std::uint32_t i = 0; i < n; ++i) gap += distance(p[at(i)], inner[i]) / n;
+    const auto layers = static_cast<std::uint32_t>(std::max(1.0, std::round(gap / s)));
+    Builder m(face, FillKind::Ogrid);
+    // Ring l (0 the boundary, `layers` the rectangle's boundary), node i.
+    std::vector<std::uint32_t> ring(static_cast<std::size_t>(layers + 1) * n);
+    auto r = [&](std::uint32_t l, std::uint32_t i) -> std::uint32_t& { return ring[l * n + i % n]; };
+    for (std::uint32_t i = 0; i < n; ++i) r(0, i) = at(i);
+    // The rectangle's grid (u along quarter 0, v along quarter 1): its boundary nodes are the
+    // last ring.
+    std::vector<std::uint32_t> grid(static_cast<std::size_t>(a + 1) * (b + 1), kNoId);
+    auto g = [&](std::uint32_t u, std::uint32_t v) -> std::uint32_t& { return grid[v * (a + 1) + u]; };
+    for (std::uint32_t i = 0; i < n; ++i) {
+      for (std::uint32_t l = 1; l < layers; ++l)
+        r(l, i) = m.add(lerp(p[at(i)], inner[i], static_cast<double>(l) / layers));
+      r(layers, i) = m.add(inner[i]);
+    }
+    for (std::uint32_t u = 0; u < a; ++u) g(u, 0) = r(layers, u);
+    for (std::uint32_t v = 0; v < b; ++v) g(a, v) = r(layers, a + v);
+    for (std::uint32_t u = 0; u < a; ++u) g(a - u, b) = r(layers, a + b + u);
+    for (std::uint32_t v = 0; v < b; ++v) g(0, b - v) = r(layers, 2 * a + b + v);
+    for (std::uint32_t v = 1; v < b; ++v)
+      for (std::uint32_t u = 1; u < a; ++u) {
+        const double x = static_cast<double>(u) / a, y = static_cast<double>(v) / b;
+        const Vec2 q = (1.0 - y) * m.pos(g(u, 0)) + y * m.pos(g(u, b)) + (1.0 - x) * m.pos(g(0, v)) +
+                       x * m.pos(g(a, v)) -
+                       ((1.0 - x) * (1.0 - y) * corner[0] + x * (1.0 - y) * corner[1] +
+                        x * y * corner[2] + (1.0 - x) * y * corner[3]);
+        g(u, v) = m.add(q);
+      }
+    for (std::uint32_t l = 0; l < layers; ++l)
+      for (std::uint32_t i = 0; i < n; ++i) m.quad(r(l, i), r(l, i + 1), r(l + 1, i + 1), r(l + 1, i));
+    for (std::uint32_t v = 0; v < b; ++v)
+      for (std::uint32_t u = 0; u < a; ++u) m.quad(g(u, v), g(u + 1, v), g(u + 1, v + 1), g(u, v + 1));
+    FaceMesh out = m.finish();
+    relax(out, face, 30);
+    if (!best || quantised(out.min_jacobian) > quantised(best->min_jacobian)) best = std::move(out);
+  }
+  return best;
+}
+
 /// The mean over a face's quads of min(scaled Jacobian, taper) (quality.md): 1 for squares,
 /// 0.5 for the kites of a triangle split into three. Chooses between unstructured templates
 /// whose worst corners are all acceptable, so that fewer and squarer quads win.
@@ -1207,6 +1303,7 @@ std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
   // Read by its corners instead of its sides (a face whose rails bend, or a remainder).
   for (FaceMesh& g : corner_grids(face))
     if (consider(std::move(g))) return best;
+  if (consider(fill_ogrid(face))) return best;
   // The O(n^3) templates only for small faces, or when nothing structured gave valid quads.
   const bool costly_ok = n <= kLargeFace || !best || best->min_jacobian < kLargeFaceFloor;
   if (n >= 6 && costly_ok) {

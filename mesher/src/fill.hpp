@@ -39,6 +39,7 @@ enum class FillKind : std::uint8_t {
   Cut,      ///< any simple polygon: cut by chords into smaller polygons, down to quads
   Pairs,    ///< any simple polygon: triangulated, triangles paired or split into quads
   Strip,    ///< a long strip whose caps or rails differ: rows from both caps, a short remainder
+  Ogrid,    ///< a round face: a rectangle of quads in the middle, rings of quads round it
 };
 const char* to_string(FillKind kind);
 

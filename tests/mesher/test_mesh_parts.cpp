@@ -192,3 +192,24 @@ TEST_CASE("breaks a hundredth of an element apart are one node", "[mesh][bridge]
     CHECK(r.quality.measures[6].worst > 0.05);
   }
 }
+
+TEST_CASE("a disk is one face: an O-grid, not wedges with slivers at the centre", "[mesh][disk]") {
+  // Its axis is one point, so every rail meets there; as wedges it gave 4875 quads with a
+  // worst corner of 0.05 and 36% of them stretched beyond aspect 5.
+  const RawPart raw = read_brep_json(test_data_dir() + "/parts/disk.json");
+  std::optional<std::size_t> quads;
+  for (const Transform& t : {Transform{}, compose(rotation({0.3, -1.0, 2.0}, 1.1), scaling(1e-3)),
+                             mirror_x()}) {
+    const Part part = build_part(transformed(raw, t));
+    const MeshPartResult r = mesh_part(part);
+    CHECK(r.check.valid());
+    CHECK(r.stats.disk_patches == 1);
+    CHECK(r.stats.by_template[9] == 1);  // kTemplateNames[9]: "ogrid"
+    CHECK(r.quality.measures[6].worst > 0.7);
+    CHECK(r.quality.measures[1].bad_percent == 0.0);  // aspect >= 5
+    const double h = default_element_size(part);
+    CHECK(static_cast<double>(r.mesh.elements.size()) < 2.5 * part.patches[0].area / (h * h));
+    if (!quads) quads = r.mesh.elements.size();
+    CHECK(r.mesh.elements.size() == *quads);
+  }
+}

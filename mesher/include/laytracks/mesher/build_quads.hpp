@@ -22,20 +22,21 @@ struct QuadOptions {
 };
 
 /// Names of the face templates, in mesher_detail::FillKind order (docs/mesher.md).
-constexpr std::array<const char*, 9> kTemplateNames = {
-    "grid", "diamond", "quad", "ring", "split", "rows", "cut", "pairs", "strip"};
+constexpr std::array<const char*, 10> kTemplateNames = {
+    "grid", "diamond", "quad", "ring", "split", "rows", "cut", "pairs", "strip", "ogrid"};
 
 /// What the quad stage did, for reports and tests.
 struct QuadStats {
   std::size_t faces = 0;  ///< faces of the patches cut by their rails
   /// Faces per template, in mesher_detail::FillKind order (kTemplateNames).
-  std::array<std::size_t, 9> by_template{};
+  std::array<std::size_t, kTemplateNames.size()> by_template{};
   std::size_t narrow_fans = 0;     ///< rails dropped: under 10 degrees from another at a node
   std::size_t dangling_rails = 0;  ///< rail segments left out: their MA end met no other rail
   std::size_t parity_boundary = 0;  ///< boundary pieces given one more edge for parity
   std::size_t parity_rails = 0;     ///< rail segments given one more edge for parity
   std::size_t edge_flips = 0;       ///< quad pairs re-split by flip_edges
   std::size_t loop_bridges = 0;     ///< loops no rail reached, joined by two bridge rails
+  std::size_t disk_patches = 0;     ///< patches whose rails all met at one point: one face
 };
 
 struct QuadResult {
