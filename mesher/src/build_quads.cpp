@@ -180,7 +180,7 @@ class QuadBuilder {
     }
     for (std::size_t p = 0; p < np; ++p) {
       if (law_) adaptive_rail_counts(PatchId(p), patches_[p]);
-      bridge_loose_loops(PatchId(p), patches_[p]);
+      bridge_loose_loops(patches_[p]);
       trace_faces(PatchId(p), patches_[p]);
     }
     fix_parity();
@@ -647,7 +647,7 @@ class QuadBuilder {
   /// be for its length; a bridge to a boundary node passes through a new axis node at its
   /// middle, one to an axis node ends there. Mesh edges: its length over the mean boundary
   /// step at its ends. The two bridges cut the region round the loop into simple faces.
-  void bridge_loose_loops(PatchId pid, PatchGraph& g) {
+  void bridge_loose_loops(PatchGraph& g) {
     const double tol = kSamePointRel * part_.size;
     auto side = [&](Vec2 a, Vec2 b, Vec2 c) {
       const double d = cross(b - a, c - a);
@@ -707,16 +707,19 @@ class QuadBuilder {
       if (!first) break;
       // The second: the clear one (not at the first's ends) that is shortest for its distance
       // from the first's foot.
-      const Bridge* second = nullptr;
-      double best = std::numeric_limits<double>::infinity();
-      for (const Bridge& br : all) {
+      std::vector<std::pair<double, std::size_t>> order;  // (score, index in all), best first
+      for (std::size_t k = 0; k < all.size(); ++k) {
+        const Bridge& br = all[k];
         if (br.a == first->a || br.b == first->b) continue;
-        const double score = br.length - distance(g.nodes[br.a].p, g.nodes[first->a].p);
-        if (score < best && clear(br, first)) {
-          best = score;
-          second = &br;
-        }
+        order.push_back({br.length - distance(g.nodes[br.a].p, g.nodes[first->a].p), k});
       }
+      std::sort(order.begin(), order.end());
+      const Bridge* second = nullptr;
+      for (const auto& [score, k] : order)
+        if (clear(all[k], first)) {
+          second = &all[k];
+          break;
+        }
       if (!second) break;
       for (const Bridge* br : {first, second}) {
         const double local = std::max(step_at(br->a), step_at(br->b));
@@ -740,7 +743,6 @@ class QuadBuilder {
       }
       ++result_.stats.loop_bridges;
     }
-    (void)pid;
   }
 
   void trace_faces(PatchId pid, PatchGraph& g) {
