@@ -113,6 +113,7 @@ int run_mesh(const std::vector<std::string>& argv) {
     doc["edge_flips"] = r.stats.edge_flips;
     doc["loop_bridges"] = r.stats.loop_bridges;
     doc["disk_patches"] = r.stats.disk_patches;
+    doc["spiral_closures"] = r.spiral_closures;
     doc["parity_fixes"] = {{"boundary_pieces", r.stats.parity_boundary},
                            {"rail_segments", r.stats.parity_rails}};
     doc["seconds"] = {{"medial", r.times.medial}, {"rails", r.times.rails},

@@ -102,6 +102,23 @@ GCutId GCutRegistry::find_or_add(
   return id;
 }
 
+GCutId GCutRegistry::nearest(EdgeId e, double t, double* gap) const {
+  const BrepEdge& edge = part_.edges[e.index()];
+  const double len = distance(part_.vertices[edge.a.index()].position,
+                              part_.vertices[edge.b.index()].position);
+  GCutId found;
+  double best = INFINITY;
+  auto consider = [&](double at, GCutId id) {
+    if (std::abs(at - t) * len < best) best = std::abs(at - t) * len, found = id;
+  };
+  if (e.index() < on_edge_.size())
+    for (const auto& [at, id] : on_edge_[e.index()]) consider(at, id);
+  if (const auto it = at_vertex_.find(edge.a.value); it != at_vertex_.end()) consider(0.0, it->second);
+  if (const auto it = at_vertex_.find(edge.b.value); it != at_vertex_.end()) consider(1.0, it->second);
+  *gap = best;
+  return found;
+}
+
 GCutId GCutRegistry::find_or_add_vertex(VertexId v, std::vector<GCutVert>& gverts, bool* created) {
   const auto it = at_vertex_.find(v.value);
   if (it != at_vertex_.end()) {

@@ -64,6 +64,9 @@ class GCutRegistry {
   /// reused (0 for a new one); `created` whether it is new.
   GCutId find_or_add(EdgeId e, double t, std::vector<GCutVert>& gverts, double* gap, bool* created);
   GCutId find_or_add_vertex(VertexId v, std::vector<GCutVert>& gverts, bool* created);
+  /// The existing G-CUT-VERT of edge e (its inside points, or its ends where they are ones)
+  /// nearest to parameter t; invalid when the edge has none. `gap`: the distance to it.
+  GCutId nearest(EdgeId e, double t, double* gap) const;
 
  private:
   const Part& part_;

@@ -20,6 +20,11 @@ constexpr double kSamePointRel = 1e-7;
 constexpr double kAtVertexT = 1e-9;
 /// Nodes of the rail network: a G-CUT-VERT index, or this flag with an MA-CUT-VERT index.
 constexpr std::uint32_t kMaNodeFlag = 1u << 31;
+/// A rail chain may cross this many shared edges per patch of the part (plus kMaxHopsExtra)
+/// before it closes on the nearest existing point of its landing edge: a closed chain crosses
+/// each shared edge at most a few times.
+constexpr std::size_t kMaxHopsPerPatch = 2;
+constexpr std::size_t kMaxHopsExtra = 8;
 
 class RailLayer {
  public:
@@ -28,7 +33,8 @@ class RailLayer {
         axes_(axes),
         g_(graph),
         index_(part),
-        registry_(part, kSamePointRel * part.size) {}
+        registry_(part, kSamePointRel * part.size),
+        max_hops_(static_cast<std::uint32_t>(kMaxHopsPerPatch * part.patches.size() + kMaxHopsExtra)) {}
 
   /// Registers the touching points of every branch point as sources and lays their rails.
   void lay_sources() {
@@ -186,8 +192,23 @@ class RailLayer {
     const Side other = e.left == bp.site ? Side::Right : Side::Left;
     const BoundaryPoint target = ma.touching_point(*m, other);
     double gap = 0.0;
-    const GCutId g2 = gcut_of(p, target, &gap);
-    g_.max_landing_gap = std::max(g_.max_landing_gap, gap);
+    // A rail that has crossed more shared edges than a closed chain could need without closing
+    // (a spiral round the draft walls of a tray, whose landings never meet their start) ends
+    // on the landing edge's nearest existing point instead of making another.
+    const std::uint32_t hop = hops_of(c.g) + 1;
+    GCutId g2;
+    if (hop > max_hops_ && target.site.kind != BoundarySite::Kind::Corner) {
+      g2 = registry_.nearest(index_.edge_at(p, target.site.loop, target.site.index),
+                             index_.edge_param(p, target.site.loop, target.site.index, target.s),
+                             &gap);
+    }
+    if (g2.valid()) {
+      ++g_.spiral_closures;  // its gap is not a closure error: not in max_landing_gap
+    } else {
+      g2 = gcut_of(p, target, &gap);
+      g_.max_landing_gap = std::max(g_.max_landing_gap, gap);
+    }
+    if (g2.index() >= hops_.size()) hops_.resize(g2.index() + 1, hop);
     std::optional<CutVertId> landed = cut_of(g2, p);
     if (!landed) {
       LoopPoint at{target.site.loop, target.site.index,
@@ -252,6 +273,9 @@ class RailLayer {
 
   void problem(const std::string& what) { g_.problems.push_back(what); }
 
+  /// Shared edges crossed by the rail that reached G-CUT-VERT g (0 for sources and seeds).
+  std::uint32_t hops_of(GCutId g) const { return g.index() < hops_.size() ? hops_[g.index()] : 0; }
+
   bool is_suppressed(Vec3 x) const {
     const double tol = kSamePointRel * part_.size;
     return std::any_of(suppressed_.begin(), suppressed_.end(),
@@ -263,6 +287,8 @@ class RailLayer {
   CutGraph& g_;
   BoundaryIndex index_;
   GCutRegistry registry_;
+  std::uint32_t max_hops_;
+  std::vector<std::uint32_t> hops_;  ///< per G-CUT-VERT: see hops_of
   std::deque<GCutId> queue_;
   std::map<std::pair<std::uint32_t, std::uint32_t>, CutVertId> cut_at_;
   std::map<std::pair<std::uint32_t, std::uint32_t>, MaCutId> branch_at_;

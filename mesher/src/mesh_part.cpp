@@ -86,6 +86,7 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
                         std::to_string(graph.problems.size()) + " problems)");
   }
   r.rail_chains = graph.chains.size();
+  r.spiral_closures = graph.spiral_closures;
   r.tracks = graph.track_count;
   r.times.rails = clock.lap();
   stage("quads");

@@ -213,3 +213,14 @@ TEST_CASE("a disk is one face: an O-grid, not wedges with slivers at the centre"
     CHECK(r.mesh.elements.size() == *quads);
   }
 }
+
+TEST_CASE("a rail that spirals round drafted walls ends instead of running for ever", "[mesh][spiral]") {
+  // Found by the stress generator: a tray whose walls lean out by a draft angle, ribs close to
+  // them; a rail round the walls never landed on its start and the rails stage ran for more
+  // than two minutes, making G-CUT-VERTs. It now ends on its edge's nearest point after
+  // kMaxHopsPerPatch crossings per patch.
+  const Part part = build_part(read_brep_json(test_data_dir() + "/parts/tray_draft_spiral.json"));
+  const MeshPartResult r = mesh_part(part);
+  CHECK(r.check.valid());
+  CHECK(r.spiral_closures > 0);
+}

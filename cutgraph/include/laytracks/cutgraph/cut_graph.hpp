@@ -102,6 +102,9 @@ struct CutGraph {
   /// Largest distance between where a rail landed and the existing G-CUT-VERT it was
   /// identified with (a loop closing, or two rails meeting).
   double max_landing_gap = 0.0;
+  /// Rails that crossed more shared edges than a closed chain needs (a spiral) and were ended
+  /// on the nearest existing point of their landing edge (RailLayer, kMaxHopsPerPatch).
+  std::size_t spiral_closures = 0;
   std::vector<std::string> problems;  ///< rails that ended where the geometry does not allow
   std::vector<DeletedRail> deleted;   ///< rails removed with narrow corridors
   /// Narrow corridors left alone: they pass a convex vertex (a small feature that needs its

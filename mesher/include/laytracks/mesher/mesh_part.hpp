@@ -57,6 +57,7 @@ struct MeshPartResult {
   double dtheta_deg = 0.0;  ///< adaptive: Delta theta_in
   QuadStats stats;
   std::size_t rail_chains = 0;
+  std::size_t spiral_closures = 0;  ///< rails ended on a point of their edge (CutGraph)
   std::size_t tracks = 0;
   StageTimes times;
   MeshCheck check;                ///< of the final mesh: valid, or mesh_part threw
