@@ -34,8 +34,8 @@ Args meshing_args(const std::vector<std::string>& argv,
 #define LAYTRACKS_MESHING_OPTIONS_HELP                                                       \
   "  --size W         element size of uniform mode, which it implies (default: the part's\n" \
   "                   mesh.size, else 1/40 of the part's size, twice the largest distance\n" \
-  "                   of a vertex from their centroid); a size that would give more than\n"  \
-  "                   5e7 quads (area / W^2) is refused\n"                                  \
+  "                   of a vertex or arc point from their centroid); a size that would\n"    \
+  "                   give more than 5e7 quads (area / W^2) is refused\n"                   \
   "  --adaptive       adaptive mode (also the part's mesh.mode \"adaptive\"): tracks as\n"   \
   "                   wide as the medial radius R x dtheta, fine where the part is thin\n"   \
   "  --uniform        uniform mode, whatever the part's mesh.mode says\n"                   \

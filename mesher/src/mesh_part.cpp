@@ -11,7 +11,26 @@
 
 namespace laytracks {
 
-double default_element_size(const Part& part) { return part.size / 40.0; }
+double default_element_size(const Part& part) {
+  // The part's size counts the file's vertices only; an arc can reach far beyond them (a disk
+  // of radius 20 given by a chord of 7 and the arc over it: size 7, the default 0.17 and
+  // 150,000 quads). With the arcs' points too, the larger of the two.
+  Vec3 c{0.0, 0.0, 0.0};
+  std::size_t n = 0;
+  for (const Patch& patch : part.patches)
+    for (const Loop& loop : patch.loops)
+      for (VertexId v : loop.vertices) {
+        c = c + part.vertices[v.index()].position;
+        ++n;
+      }
+  if (n == 0) return part.size / 40.0;
+  c = (1.0 / static_cast<double>(n)) * c;
+  double reach = 0.0;
+  for (const Patch& patch : part.patches)
+    for (const Loop& loop : patch.loops)
+      for (VertexId v : loop.vertices) reach = std::max(reach, distance(c, part.vertices[v.index()].position));
+  return std::max(part.size, 2.0 * reach) / 40.0;
+}
 
 namespace {
 

@@ -19,7 +19,8 @@
 namespace laytracks {
 
 /// Default element size when neither the command line nor the part's mesh.size gives one:
-/// 1/40 of Part::size (the same in every pose).
+/// 1/40 of the larger of Part::size and twice the largest distance of a loop point (vertices
+/// and arc points) from their centroid (the same in every pose).
 double default_element_size(const Part& part);
 
 /// Default smoothing sweeps of `laytracks mesh` (docs/mesher.md says why).
