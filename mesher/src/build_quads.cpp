@@ -594,25 +594,34 @@ class QuadBuilder {
   /// within a factor kFootWidthBound of the law's width at that node: a sliver track beside
   /// a rail (two rails landing close) must not make it thousands of edges long. Eq. (3) then
   /// spaces the nodes R_i / N along each rail.
-  void adaptive_rail_counts(PatchId pid, PatchGraph& g) const {
-    std::vector<double> side_sum(g.nodes.size(), 0.0);
-    std::vector<int> sides(g.nodes.size(), 0);
+  /// Per node of a patch graph: the mean mesh-edge length of the boundary pieces at it (0 for
+  /// a node on no boundary piece, an MA point).
+  std::vector<double> boundary_steps(const PatchGraph& g) const {
+    std::vector<double> sum(g.nodes.size(), 0.0);
+    std::vector<int> count(g.nodes.size(), 0);
     for (const CEdge& e : g.edges) {
       if (e.rail) continue;
       const double step = distance(g.nodes[e.a].p, g.nodes[e.b].p) / edges_[e.edge].count[e.piece];
       for (std::uint32_t v : {e.a, e.b}) {
-        side_sum[v] += step;
-        ++sides[v];
+        sum[v] += step;
+        ++count[v];
       }
     }
+    for (std::size_t v = 0; v < sum.size(); ++v)
+      if (count[v] > 0) sum[v] /= count[v];
+    return sum;
+  }
+
+  void adaptive_rail_counts(PatchId pid, PatchGraph& g) const {
+    const std::vector<double> step = boundary_steps(g);
     std::map<std::uint32_t, std::pair<double, double>> at;  // MA node -> (sum R, sum W)
     std::map<std::uint32_t, int> rails;
     for (const CEdge& e : g.edges) {
-      if (!e.rail || sides[e.a] == 0) continue;
+      if (!e.rail || step[e.a] == 0.0) continue;
       auto& [r, w] = at[e.b];
       r += distance(g.nodes[e.a].p, g.nodes[e.b].p);
       const double law_w = law_->width(pid, g.foot.at(e.a));
-      w += std::clamp(side_sum[e.a] / sides[e.a], law_w / kFootWidthBound, law_w * kFootWidthBound);
+      w += std::clamp(step[e.a], law_w / kFootWidthBound, law_w * kFootWidthBound);
       ++rails[e.b];
     }
     for (CEdge& e : g.edges) {
@@ -660,16 +669,7 @@ class QuadBuilder {
       const int d1 = side(P, Q, R), d2 = side(P, Q, T), d3 = side(R, T, P), d4 = side(R, T, Q);
       return d1 * d2 <= 0 && d3 * d4 <= 0;
     };
-    auto step_at = [&](std::uint32_t v) {  // mean boundary step at node v, or 0
-      double sum = 0.0;
-      int k = 0;
-      for (const CEdge& e : g.edges)
-        if (!e.rail && (e.a == v || e.b == v)) {
-          sum += distance(g.nodes[e.a].p, g.nodes[e.b].p) / edges_[e.edge].count[e.piece];
-          ++k;
-        }
-      return k > 0 ? sum / k : 0.0;
-    };
+    const std::vector<double> step = boundary_steps(g);
     for (std::size_t round = 0; round < g.nodes.size(); ++round) {
       UnionFind uf(g.nodes.size());
       for (const CEdge& e : g.edges) uf.unite(e.a, e.b);
@@ -722,7 +722,7 @@ class QuadBuilder {
         }
       if (!second) break;
       for (const Bridge* br : {first, second}) {
-        const double local = std::max(step_at(br->a), step_at(br->b));
+        const double local = std::max(step[br->a], step[br->b]);
         const double h = local > 0.0 ? local : h_;
         auto rail = [&](std::uint32_t from, std::uint32_t to) {
           CEdge r;
