@@ -114,6 +114,8 @@ int run_mesh(const std::vector<std::string>& argv) {
     doc["loop_bridges"] = r.stats.loop_bridges;
     doc["disk_patches"] = r.stats.disk_patches;
     doc["spiral_closures"] = r.spiral_closures;
+    doc["loop_closures"] = r.loop_closures;
+    doc["rail_merges"] = r.rail_merges;
     doc["parity_fixes"] = {{"boundary_pieces", r.stats.parity_boundary},
                            {"rail_segments", r.stats.parity_rails}};
     doc["seconds"] = {{"medial", r.times.medial}, {"rails", r.times.rails},

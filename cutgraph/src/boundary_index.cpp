@@ -103,13 +103,18 @@ GCutId GCutRegistry::find_or_add(
 }
 
 GCutId GCutRegistry::nearest(EdgeId e, double t, double* gap) const {
+  return nearest_if(e, t, [](GCutId) { return true; }, gap);
+}
+
+GCutId GCutRegistry::nearest_if(EdgeId e, double t, const std::function<bool(GCutId)>& accept,
+                                double* gap) const {
   const BrepEdge& edge = part_.edges[e.index()];
   const double len = distance(part_.vertices[edge.a.index()].position,
                               part_.vertices[edge.b.index()].position);
   GCutId found;
   double best = INFINITY;
   auto consider = [&](double at, GCutId id) {
-    if (std::abs(at - t) * len < best) best = std::abs(at - t) * len, found = id;
+    if (accept(id) && std::abs(at - t) * len < best) best = std::abs(at - t) * len, found = id;
   };
   if (e.index() < on_edge_.size())
     for (const auto& [at, id] : on_edge_[e.index()]) consider(at, id);

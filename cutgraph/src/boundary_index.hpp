@@ -2,6 +2,7 @@
 // G-CUT-VERTs, which identifies a point landing within a tolerance of an existing one.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <tuple>
 #include <utility>
@@ -67,6 +68,9 @@ class GCutRegistry {
   /// The existing G-CUT-VERT of edge e (its inside points, or its ends where they are ones)
   /// nearest to parameter t; invalid when the edge has none. `gap`: the distance to it.
   GCutId nearest(EdgeId e, double t, double* gap) const;
+  /// As nearest, among the G-CUT-VERTs `accept` takes.
+  GCutId nearest_if(EdgeId e, double t, const std::function<bool(GCutId)>& accept,
+                    double* gap) const;
 
  private:
   const Part& part_;

@@ -25,6 +25,16 @@ constexpr std::uint32_t kMaNodeFlag = 1u << 31;
 /// each shared edge at most a few times.
 constexpr std::size_t kMaxHopsPerPatch = 2;
 constexpr std::size_t kMaxHopsExtra = 8;
+/// A rail chain that comes back to a shared edge it has crossed before lands on that earlier
+/// crossing when it is within this x the medial radius at the rail's MA point (the rail then
+/// leans by at most atan(0.25), 14 degrees): the loop closes. Round the drafted walls of a
+/// tray the chain's landings drift by a few percent of the wall per lap and never meet their
+/// start (Fig. 4 assumes they do); left open, the laps make slivers.
+constexpr double kLoopCloseRel = 0.25;
+/// A rail landing within this x the medial radius of an existing point of another chain lands
+/// on it (leaning by at most 3 degrees): two rails that coincide on the exact part (a drafted
+/// wall's corner rail and the floor's) would leave a sliver corridor between them.
+constexpr double kCoincideRel = 0.05;
 
 class RailLayer {
  public:
@@ -45,6 +55,7 @@ class RailLayer {
           if (is_suppressed(part_.patches[p].frame.to_3d(bp.position))) continue;
           const GCutId g = gcut_of(pid, bp, nullptr);
           g_.gverts[g.index()].source = true;
+          set_root(g, g);
           if (const auto corner = corner_in(pid, g)) {
             // A branch point touching a reflex corner: the rail is one ray of the corner's fan
             // (Fig. 13), laid here; the corner's other images end there.
@@ -73,7 +84,16 @@ class RailLayer {
 
   /// Lays the rail through a boundary point of patch p (a track rail), and all it leads to.
   void lay_from(PatchId p, const BoundaryPoint& bp) {
-    queue_.push_back(gcut_of(p, bp, nullptr));
+    if (bp.site.kind != BoundarySite::Kind::Corner) {
+      // A seed between a leaning rail's target and its landing: that rail is this seed's
+      // (laying it would cross the leaning one).
+      const EdgeId e = index_.edge_at(p, bp.site.loop, bp.site.index);
+      const double t = index_.edge_param(p, bp.site.loop, bp.site.index, bp.s);
+      if (inside_lean(e, t).valid()) return;
+    }
+    const GCutId g = gcut_of(p, bp, nullptr);
+    if (!root_of(g).valid()) set_root(g, g);
+    queue_.push_back(g);
     run();
   }
 
@@ -119,6 +139,18 @@ class RailLayer {
       out.push_back({s.patch, {s.loop, s.seg, s.forward ? g.t : 1.0 - g.t}});
     }
     return out;
+  }
+
+  /// Where G-CUT-VERT g lies on patch p's boundary: its image on segment `seg` of `loop` if it
+  /// has one there (an edge may bound a patch twice, along a seam), else its first on p.
+  LoopPoint image_in(GCutId g, PatchId p, std::uint32_t loop, std::uint32_t seg) const {
+    std::optional<LoopPoint> first;
+    for (const auto& [q, at] : images(g)) {
+      if (q != p) continue;
+      if (at.loop == loop && at.segment == seg) return at;
+      if (!first) first = at;
+    }
+    return *first;
   }
 
   CutVertId make_cut(GCutId g, PatchId p, const LoopPoint& at) {
@@ -196,26 +228,73 @@ class RailLayer {
     // (a spiral round the draft walls of a tray, whose landings never meet their start) ends
     // on the landing edge's nearest existing point instead of making another.
     const std::uint32_t hop = hops_of(c.g) + 1;
+    const GCutId root = root_of(c.g);
     GCutId g2;
-    if (hop > max_hops_ && target.site.kind != BoundarySite::Kind::Corner) {
-      g2 = registry_.nearest(index_.edge_at(p, target.site.loop, target.site.index),
-                             index_.edge_param(p, target.site.loop, target.site.index, target.s),
-                             &gap);
+    if (target.site.kind != BoundarySite::Kind::Corner) {
+      const EdgeId te = index_.edge_at(p, target.site.loop, target.site.index);
+      const double tt = index_.edge_param(p, target.site.loop, target.site.index, target.s);
+      // A target between a leaning rail's own target and its landing would cross it: it lands
+      // there too.
+      g2 = inside_lean(te, tt);
+      if (g2.valid()) {
+        gap = std::abs(param_on(g2, te) - tt) * edge_length(te);
+        ++g_.rail_merges;
+      }
+      if (!g2.valid() && hop > max_hops_) {
+        g2 = registry_.nearest(te, tt, &gap);
+        if (g2.valid()) ++g_.spiral_closures;  // its gap is not a closure error
+      }
+      // Closures and merges only where the chain goes on (a shared edge): on a free edge it
+      // ends, and narrow corridors there are removed as usual.
+      const bool shared = part_.edges[te.index()].patches.size() >= 2;
+      if (!g2.valid() && shared && root.valid()) {
+        double d = 0.0;
+        const GCutId own = registry_.nearest_if(
+            te, tt, [&](GCutId x) { return root_of(x) == root; }, &d);
+        if (own.valid() && d > registry_tolerance() && d <= kLoopCloseRel * m->radius) {
+          // Land on the existing point nearest the target on the way to that crossing (the
+          // crossing, unless another chain's rail lands between): the leaning rail crosses none.
+          const double to = param_on(own, te);
+          g2 = registry_.nearest_if(
+              te, tt,
+              [&](GCutId x) {
+                const double u = param_on(x, te);
+                return (u - tt) * (u - to) <= 0.0;
+              },
+              &gap);
+          ++g_.loop_closures;  // nor is this one
+        }
+      }
+      if (!g2.valid() && shared) {
+        double d = 0.0;
+        const GCutId near = registry_.nearest_if(
+            te, tt, [&](GCutId x) { return !g_.gverts[x.index()].vertex; }, &d);
+        if (near.valid() && d > registry_tolerance() && d <= kCoincideRel * m->radius) {
+          g2 = near;
+          gap = d;
+          ++g_.rail_merges;
+        }
+      }
+      if (g2.valid()) {
+        const double x = param_on(g2, te);
+        leans_[te.value].push_back({std::min(x, tt), std::max(x, tt), g2});
+      }
     }
-    if (g2.valid()) {
-      ++g_.spiral_closures;  // its gap is not a closure error: not in max_landing_gap
-    } else {
+    const bool leans = g2.valid();
+    if (!leans) {
       g2 = gcut_of(p, target, &gap);
       g_.max_landing_gap = std::max(g_.max_landing_gap, gap);
     }
     if (g2.index() >= hops_.size()) hops_.resize(g2.index() + 1, hop);
+    if (!root_of(g2).valid()) set_root(g2, root);
     std::optional<CutVertId> landed = cut_of(g2, p);
     if (!landed) {
       LoopPoint at{target.site.loop, target.site.index,
                    target.site.kind == BoundarySite::Kind::Corner ? 0.0 : target.s};
+      if (leans) at = image_in(g2, p, target.site.loop, target.site.index);
       landed = make_cut(g2, p, at);
     }
-    g_.segments.push_back({*landed, mc});
+    g_.segments.push_back({*landed, mc, leans});
     links_.push_back({c.g.value, g2.value, p, gap});
     queue_.push_back(g2);
   }
@@ -276,6 +355,39 @@ class RailLayer {
   /// Shared edges crossed by the rail that reached G-CUT-VERT g (0 for sources and seeds).
   std::uint32_t hops_of(GCutId g) const { return g.index() < hops_.size() ? hops_[g.index()] : 0; }
 
+  /// The G-CUT-VERT whose rail chain reached g (itself for sources and seeds).
+  GCutId root_of(GCutId g) const { return g.index() < roots_.size() ? roots_[g.index()] : GCutId(); }
+  void set_root(GCutId g, GCutId root) {
+    if (g.index() >= roots_.size()) roots_.resize(g.index() + 1);
+    roots_[g.index()] = root;
+  }
+  /// The point a leaning rail landed on whose span on edge e holds parameter t, if any.
+  GCutId inside_lean(EdgeId e, double t) const {
+    const auto it = leans_.find(e.value);
+    if (it == leans_.end()) return {};
+    // Ends included, within the point tolerance: a target at a leaning rail's own target (a
+    // rail through the same MA point) decides the same in every pose.
+    const double tol = registry_tolerance() / edge_length(e);
+    for (const Lean& l : it->second) {
+      if (t >= l.lo - tol && t <= l.hi + tol) return l.point;
+    }
+    return {};
+  }
+
+  double edge_length(EdgeId e) const {
+    const BrepEdge& edge = part_.edges[e.index()];
+    return distance(part_.vertices[edge.a.index()].position,
+                    part_.vertices[edge.b.index()].position);
+  }
+
+  /// The parameter of G-CUT-VERT g along edge e (one of its edges).
+  double param_on(GCutId g, EdgeId e) const {
+    const GCutVert& gv = g_.gverts[g.index()];
+    if (gv.vertex) return part_.edges[e.index()].a == *gv.vertex ? 0.0 : 1.0;
+    return gv.t;
+  }
+  double registry_tolerance() const { return kSamePointRel * part_.size; }
+
   bool is_suppressed(Vec3 x) const {
     const double tol = kSamePointRel * part_.size;
     return std::any_of(suppressed_.begin(), suppressed_.end(),
@@ -289,6 +401,14 @@ class RailLayer {
   GCutRegistry registry_;
   std::uint32_t max_hops_;
   std::vector<std::uint32_t> hops_;  ///< per G-CUT-VERT: see hops_of
+  std::vector<GCutId> roots_;        ///< per G-CUT-VERT: see root_of
+  /// Per edge: the span between a leaning rail's target and the point it landed on.
+  struct Lean {
+    double lo = 0.0;
+    double hi = 0.0;
+    GCutId point;
+  };
+  std::map<std::uint32_t, std::vector<Lean>> leans_;
   std::deque<GCutId> queue_;
   std::map<std::pair<std::uint32_t, std::uint32_t>, CutVertId> cut_at_;
   std::map<std::pair<std::uint32_t, std::uint32_t>, MaCutId> branch_at_;

@@ -78,7 +78,9 @@ std::vector<std::string> validate_cut_graph(const Part& part,
                          " lies off its MA edge");
     }
     // Rails into the centre of a polygonised arc are longer than its radius by the sagitta.
-    if (std::fabs(distance(c.position, m.point.position) - m.point.radius) > tol + part.chord_tol) {
+    // A rail closing a loop on an existing point leans (RailLayer): not along the mapping.
+    if (!s.leans &&
+        std::fabs(distance(c.position, m.point.position) - m.point.radius) > tol + part.chord_tol) {
       problems.push_back("a rail segment on " + part.patch_label(c.patch) +
                          " is not as long as the radius at its MA point");
     }

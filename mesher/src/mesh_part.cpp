@@ -106,6 +106,8 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
   }
   r.rail_chains = graph.chains.size();
   r.spiral_closures = graph.spiral_closures;
+  r.loop_closures = graph.loop_closures;
+  r.rail_merges = graph.rail_merges;
   r.tracks = graph.track_count;
   r.times.rails = clock.lap();
   stage("quads");

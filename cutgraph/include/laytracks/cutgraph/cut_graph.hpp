@@ -59,6 +59,9 @@ struct MaCutVert {
 struct RailSegment {
   CutVertId cut;
   MaCutId ma;
+  /// It closes a loop or a spiral on an existing point, so it is longer or shorter than the
+  /// radius at its MA point and not along the two-way mapping (RailLayer).
+  bool leans = false;
 };
 
 /// How a rail chain ends (see docs/cutgraph.md).
@@ -105,6 +108,11 @@ struct CutGraph {
   /// Rails that crossed more shared edges than a closed chain needs (a spiral) and were ended
   /// on the nearest existing point of their landing edge (RailLayer, kMaxHopsPerPatch).
   std::size_t spiral_closures = 0;
+  /// Rails that came back to a shared edge near their own chain's earlier crossing and were
+  /// landed on it (RailLayer, kLoopCloseRel): loops round drafted walls.
+  std::size_t loop_closures = 0;
+  /// Rails that landed within kCoincideRel x their radius of another chain's point, on it.
+  std::size_t rail_merges = 0;
   std::vector<std::string> problems;  ///< rails that ended where the geometry does not allow
   std::vector<DeletedRail> deleted;   ///< rails removed with narrow corridors
   /// Narrow corridors left alone: they pass a convex vertex (a small feature that needs its

@@ -59,6 +59,8 @@ struct MeshPartResult {
   QuadStats stats;
   std::size_t rail_chains = 0;
   std::size_t spiral_closures = 0;  ///< rails ended on a point of their edge (CutGraph)
+  std::size_t loop_closures = 0;    ///< rails landed on their own chain's earlier crossing
+  std::size_t rail_merges = 0;      ///< rails landed on another chain's point close by
   std::size_t tracks = 0;
   StageTimes times;
   MeshCheck check;                ///< of the final mesh: valid, or mesh_part threw
