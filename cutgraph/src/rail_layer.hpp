@@ -319,7 +319,7 @@ class RailLayer {
     // At a vertex when within the point tolerance of it (a distance, not a parameter: the
     // same decision in every pose and at every scale).
     std::optional<MaVertexId> v;
-    const double tol = kSamePointRel * part_.size;
+    const double tol = registry_tolerance();
     if (m.t <= kAtVertexT || distance(m.position, ma.vertex(e.a).position) <= tol) v = e.a;
     if (m.t >= 1.0 - kAtVertexT || distance(m.position, ma.vertex(e.b).position) <= tol) v = e.b;
     const bool branch = v && ma.vertex(*v).degree >= 3;
@@ -389,7 +389,7 @@ class RailLayer {
   double registry_tolerance() const { return kSamePointRel * part_.size; }
 
   bool is_suppressed(Vec3 x) const {
-    const double tol = kSamePointRel * part_.size;
+    const double tol = registry_tolerance();
     return std::any_of(suppressed_.begin(), suppressed_.end(),
                        [&](Vec3 q) { return distance(q, x) <= tol; });
   }
