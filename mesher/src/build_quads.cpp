@@ -588,12 +588,6 @@ class QuadBuilder {
                   g.edges.end());
   }
 
-  /// Adaptive mode, Eq. (2): the rails meeting at one MA point all get N = round(L_avg / W),
-  /// L_avg their mean length and W the mean, over their boundary nodes, of the mean length of
-  /// the two boundary mesh edges there (the widths of the tracks either side), each held
-  /// within a factor kFootWidthBound of the law's width at that node: a sliver track beside
-  /// a rail (two rails landing close) must not make it thousands of edges long. Eq. (3) then
-  /// spaces the nodes R_i / N along each rail.
   /// Per node of a patch graph: the mean mesh-edge length of the boundary pieces at it (0 for
   /// a node on no boundary piece, an MA point).
   std::vector<double> boundary_steps(const PatchGraph& g) const {
@@ -612,6 +606,12 @@ class QuadBuilder {
     return sum;
   }
 
+  /// Adaptive mode, Eq. (2): the rails meeting at one MA point all get N = round(L_avg / W),
+  /// L_avg their mean length and W the mean, over their boundary nodes, of the mean length of
+  /// the two boundary mesh edges there (the widths of the tracks either side), each held
+  /// within a factor kFootWidthBound of the law's width at that node: a sliver track beside
+  /// a rail (two rails landing close) must not make it thousands of edges long. Eq. (3) then
+  /// spaces the nodes R_i / N along each rail.
   void adaptive_rail_counts(PatchId pid, PatchGraph& g) const {
     const std::vector<double> step = boundary_steps(g);
     std::map<std::uint32_t, std::pair<double, double>> at;  // MA node -> (sum R, sum W)
