@@ -246,8 +246,8 @@ double size_for(const Part& part, double target, const Options& o, std::vector<R
 void print_header(const Part& part, const std::string& path, double area) {
   std::printf("%s: %zu patches, area %.6g %s^2\n", path.c_str(), part.patches.size(), area,
               part.units.c_str());
-  std::printf("%10s %9s %9s %7s %7s %8s %7s %7s %8s %8s %9s %7s %7s %7s %7s %5s\n", "size", "quads",
-              "nodes", "medial", "rails", "quads", "smooth", "check", "total", "cpu", "quads/s",
+  std::printf("%10s %9s %9s %7s %7s %8s %7s %7s %7s %8s %8s %9s %7s %7s %7s %7s %5s\n", "size", "quads",
+              "nodes", "medial", "rails", "quads", "refill", "smooth", "check", "total", "cpu", "quads/s",
               "min SJ", "skew30", "asp5", "tap0.8", "valid");
 }
 
@@ -260,9 +260,9 @@ void print_row(const Run& r) {
   }
   const auto& m = r.quality.measures;
   std::printf(
-      "%10.5g %9zu %9zu %7.3f %7.3f %8.3f %7.3f %7.3f %8.3f %8.3f %9.0f %7.3f %6.1f%% %6.2f%% "
+      "%10.5g %9zu %9zu %7.3f %7.3f %8.3f %7.3f %7.3f %7.3f %8.3f %8.3f %9.0f %7.3f %6.1f%% %6.2f%% "
       "%6.1f%% %5s\n",
-      r.size, r.quads, r.nodes, r.times.medial, r.times.rails, r.times.quads, r.times.smooth,
+      r.size, r.quads, r.nodes, r.times.medial, r.times.rails, r.times.quads, r.times.refill, r.times.smooth,
       r.times.check, r.total, r.cpu, r.total > 0 ? static_cast<double>(r.quads) / r.total : 0.0,
       m[6].worst, m[0].bad_percent, m[1].bad_percent, m[2].bad_percent, r.valid ? "yes" : "NO");
 }
@@ -289,6 +289,7 @@ nlohmann::ordered_json run_json(const Run& r) {
   j["seconds"] = {{"medial", r.times.medial},
                   {"rails", r.times.rails},
                   {"quads", r.times.quads},
+                  {"refill", r.times.refill},
                   {"smooth", r.times.smooth},
                   {"check", r.times.check},
                   {"total", r.total},

@@ -84,10 +84,10 @@ def main():
     ap.add_argument("--stages", action="store_true")
     args = ap.parse_args()
     if args.stages:
-        print("| part | h | quads | medial | rails | quads | smooth | check | total [s] | cpu [s] "
+        print("| part | h | quads | medial | rails | quads | refill | smooth | check | total [s] | cpu [s] "
               "| quads/s | Gmsh quads | Gmsh lc | Gmsh 1D+2D [s] | Gmsh cpu [s] | Gmsh command [s] "
               "| Gmsh quads/s |")
-        print("|---|" + "---:|" * 16)
+        print("|---|" + "---:|" * 17)
     else:
         print("| part | quads | s | quads/s | min SJ | skew>=30 % | aspect>=5 % | taper<=0.8 % "
               "| valid | Gmsh quads | s | quads/s | min SJ | skew>=30 % | aspect>=5 % "
@@ -103,11 +103,12 @@ def main():
                 if o.get("status") == "ok":
                     s = o["seconds"]
                     cells = [num(o["size"], "%.4g"), "{:,}".format(o["quads"]), num(s["medial"]),
-                             num(s["rails"]), num(s["quads"]), num(s["smooth"]), num(s["check"]),
+                             num(s["rails"]), num(s["quads"]), num(s.get("refill")),
+                             num(s["smooth"]), num(s["check"]),
                              num(s["total"]), num(s.get("cpu")),
                              "{:,.0f}".format(o["quads"] / s["total"])]
                 else:
-                    cells = [num(o.get("size"), "%.4g"), ours_cells(o)[0]] + [""] * 8
+                    cells = [num(o.get("size"), "%.4g"), ours_cells(o)[0]] + [""] * 9
                 if g.get("status") == "ok":
                     cells += ["{:,}".format(g["quads"]), num(g["lc"], "%.4g"), num(g["mesh_wall"]),
                               num(g["mesh_cpu"]), num(g["wall"]),

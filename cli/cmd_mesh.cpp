@@ -111,6 +111,7 @@ int run_mesh(const std::vector<std::string>& argv) {
       doc["faces_by_template"][kTemplateNames[k]] = r.stats.by_template[k];
     doc["narrow_fans_dropped"] = r.stats.narrow_fans;
     doc["edge_flips"] = r.stats.edge_flips;
+    doc["cavity_refills"] = r.stats.cavity_refills;
     doc["loop_bridges"] = r.stats.loop_bridges;
     doc["disk_patches"] = r.stats.disk_patches;
     doc["spiral_closures"] = r.spiral_closures;
@@ -119,7 +120,8 @@ int run_mesh(const std::vector<std::string>& argv) {
     doc["parity_fixes"] = {{"boundary_pieces", r.stats.parity_boundary},
                            {"rail_segments", r.stats.parity_rails}};
     doc["seconds"] = {{"medial", r.times.medial}, {"rails", r.times.rails},
-                      {"quads", r.times.quads},   {"smooth", r.times.smooth},
+                      {"quads", r.times.quads},   {"refill", r.times.refill},
+                      {"smooth", r.times.smooth},
                       {"check", r.times.check},   {"total", seconds}};
     doc["quality"] = summary_json(r.quality);
     doc["quality_before_smoothing"] = summary_json(r.before_smoothing);

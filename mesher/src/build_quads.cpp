@@ -25,6 +25,7 @@
 #include <sstream>
 
 #include "fill.hpp"
+#include "patch_quads.hpp"
 #include "laytracks/brep/error.hpp"
 #include "laytracks/brep/union_find.hpp"
 #include "laytracks/cutgraph/adaptive.hpp"
@@ -1145,52 +1146,19 @@ std::size_t flip_edges(const Part& part, QuadMesh& mesh) {
 void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations) {
   if (iterations <= 0) return;
   // Nodes used by elements of several patches, or on an edge used once in a patch, stay.
-  const std::size_t nn = mesh.nodes.size();
-  std::vector<std::uint32_t> patch_of(nn, kNone);
-  std::vector<bool> fixed(nn, false);
-  for (const MeshElement& e : mesh.elements) {
-    for (std::uint32_t v : e.nodes) {
-      if (v == MeshElement::kNoNode) continue;
-      if (patch_of[v] == kNone) patch_of[v] = e.patch.value;
-      else if (patch_of[v] != e.patch.value) fixed[v] = true;
-    }
-  }
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
-  for (const MeshElement& e : mesh.elements)
-    for (std::size_t k = 0; k < 4; ++k) ++uses[std::minmax(e.nodes[k], e.nodes[(k + 1) % 4])];
-  for (const auto& [edge, n] : uses)
-    if (n == 1) fixed[edge.first] = fixed[edge.second] = true;
+  const std::vector<bool> pinned = pinned_nodes(mesh);
   for (std::size_t p = 0; p < part.patches.size(); ++p) {
     const Frame& frame = part.patches[p].frame;
-    std::vector<std::uint32_t> local(nn, kNone), global;
-    std::vector<std::array<std::uint32_t, 4>> quads;
-    for (const MeshElement& e : mesh.elements) {
-      if (e.patch.index() != p) continue;
-      std::array<std::uint32_t, 4> q{};
-      for (std::size_t k = 0; k < 4; ++k) {
-        const std::uint32_t v = e.nodes[k];
-        if (local[v] == kNone) {
-          local[v] = static_cast<std::uint32_t>(global.size());
-          global.push_back(v);
-        }
-        q[k] = local[v];
-      }
-      quads.push_back(q);
-    }
-    std::vector<Vec2> pos(global.size());
-    std::vector<bool> fix(global.size());
-    for (std::size_t i = 0; i < global.size(); ++i) {
-      pos[i] = frame.to_2d(mesh.nodes[global[i]]);
-      fix[i] = fixed[global[i]];
-    }
-    const std::vector<Vec2> before = pos;
-    smooth_nodes(pos, fix, quads, iterations);
+    PatchQuads pq = patch_quads(part, mesh, p, pinned);
+    const std::vector<Vec2> before = pq.pos;
+    smooth_nodes(pq.pos, pq.fixed, pq.quads, iterations);
     // Then the corners' angles, against the edge lengths the Laplacian sweeps left.
-    optimize_nodes(pos, fix, quads, iterations);
+    optimize_nodes(pq.pos, pq.fixed, pq.quads, iterations);
     // Then each node still in a quad below kAcceptJacobian moves to raise its worst quad.
-    untangle_nodes(pos, fix, quads, iterations, kFinalUntangleTarget, kFinalEdgeFraction);
-    for (std::size_t i = 0; i < global.size(); ++i)
-      if (pos[i] != before[i]) mesh.nodes[global[i]] = frame.to_3d(pos[i]);
+    untangle_nodes(pq.pos, pq.fixed, pq.quads, iterations, kFinalUntangleTarget,
+                   kFinalEdgeFraction);
+    for (std::size_t i = 0; i < pq.global.size(); ++i)
+      if (pq.pos[i] != before[i]) mesh.nodes[pq.global[i]] = frame.to_3d(pq.pos[i]);
   }
 }
 

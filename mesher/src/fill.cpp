@@ -135,9 +135,13 @@ struct Builder {
   }
 };
 
+/// relax() does nothing while fill_cavity runs: the cavity's caller relaxes the quads it
+/// keeps with the quads round them (and the templates' own sweeps were most of its time).
+thread_local bool relax_off = false;
+
 /// Improves a template's interior nodes in place (boundary nodes fixed).
 void relax(FaceMesh& m, const FaceInput& face, int iterations) {
-  if (m.interior.empty()) return;
+  if (m.interior.empty() || relax_off) return;
   std::vector<Vec2> pos(face.cycle);
   pos.insert(pos.end(), m.interior.begin(), m.interior.end());
   std::vector<bool> fixed(pos.size(), false);
@@ -1274,19 +1278,51 @@ double mean_shape(const FaceMesh& m, const FaceInput& face) {
 constexpr double kShapeStep = 0.01;
 
 /// Every template in turn; the first good one, else the best.
-std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
-  const std::size_t n = face.cycle.size();
+/// The unstructured templates (split and fan split from either parity, cut; fan split only
+/// when `fans`); of those whose worst corner is acceptable, the one whose quads are best on
+/// average (mean_shape, in whole kShapeStep steps, the first on ties). `consider` sees every
+/// result.
+template <class Consider>
+std::optional<FaceMesh> pick_unstructured(const FaceInput& face, bool fans, Consider&& consider) {
+  std::optional<FaceMesh> pick;
+  double pick_shape = 0.0;
+  for (int k = 0; k < 5; ++k) {
+    if (!fans && (k == 2 || k == 3)) continue;
+    std::optional<FaceMesh> m = k < 2   ? fill_split(face, static_cast<std::uint32_t>(k))
+                                : k < 4 ? fill_fan_split(face, static_cast<std::uint32_t>(k - 2))
+                                        : fill_cut(face);
+    if (m && m->min_jacobian >= kAcceptJacobian) {
+      const double shape = std::floor(mean_shape(*m, face) / kShapeStep);
+      if (!pick || shape > pick_shape) {
+        pick = *m;
+        pick_shape = shape;
+      }
+    }
+    consider(std::move(m));
+  }
+  return pick;
+}
+
+/// The best template so far. A later one must be better by a whole kChoiceStep: relaxation is
+/// sensitive to the last bits of the input, and a choice between two nearly equal templates
+/// would otherwise differ between poses of one part (and with it the element count).
+struct BestFill {
   std::optional<FaceMesh> best;
-  static const bool debug = std::getenv("LAYTRACKS_DEBUG_FACE") != nullptr;
-  auto consider = [&](std::optional<FaceMesh> m) {
+  /// Takes m if it is better; true once the best is acceptable.
+  bool consider(std::optional<FaceMesh> m, int depth) {
+    static const bool debug = std::getenv("LAYTRACKS_DEBUG_FACE") != nullptr;
     if (debug && m) std::fprintf(stderr, "  [%d] %s J=%g\n", depth, to_string(m->kind), m->min_jacobian);
-    // A later template must be better by a whole kChoiceStep: relaxation is sensitive to the
-    // last bits of the input, and a choice between two nearly equal templates would otherwise
-    // differ between poses of one part (and with it the element count).
     if (m && (!best || quantised(m->min_jacobian) > quantised(best->min_jacobian)))
       best = std::move(m);
     return best && best->min_jacobian >= kAcceptJacobian;
-  };
+  }
+};
+
+std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
+  const std::size_t n = face.cycle.size();
+  BestFill b;
+  auto consider = [&](std::optional<FaceMesh> m) { return b.consider(std::move(m), depth); };
+  const std::optional<FaceMesh>& best = b.best;
   const std::vector<Strip> strips = strips_of(face);
   for (const Strip& st : strips)
     if (consider(fill_grid(face, st))) return best;
@@ -1307,23 +1343,7 @@ std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
   // The O(n^3) templates only for small faces, or when nothing structured gave valid quads.
   const bool costly_ok = n <= kLargeFace || !best || best->min_jacobian < kLargeFaceFloor;
   if (n >= 6 && costly_ok) {
-    // Every unstructured template; of those whose worst corner is acceptable, the one whose
-    // quads are best on average (mean_shape, in whole kShapeStep steps, the first on ties).
-    std::optional<FaceMesh> pick;
-    double pick_shape = 0.0;
-    for (int k = 0; k < 5; ++k) {
-      std::optional<FaceMesh> m = k < 2   ? fill_split(face, static_cast<std::uint32_t>(k))
-                                  : k < 4 ? fill_fan_split(face, static_cast<std::uint32_t>(k - 2))
-                                          : fill_cut(face);
-      if (m && m->min_jacobian >= kAcceptJacobian) {
-        const double shape = std::floor(mean_shape(*m, face) / kShapeStep);
-        if (!pick || shape > pick_shape) {
-          pick = *m;
-          pick_shape = shape;
-        }
-      }
-      consider(std::move(m));
-    }
+    std::optional<FaceMesh> pick = pick_unstructured(face, true, consider);
     if (pick) return pick;
   }
   if (n >= 4 && costly_ok) consider(fill_pairs(face));
@@ -1353,6 +1373,32 @@ FaceMesh fill_face(const FaceInput& face, const std::string& where) {
     for (const Vec2& p : face.cycle) s << " (" << p.x << "," << p.y << ")";
   }
   throw InternalError(s.str());
+}
+
+std::optional<FaceMesh> fill_cavity(const FaceInput& face) {
+  const std::size_t n = face.cycle.size();
+  if (n < 4 || n % 2 != 0) return std::nullopt;
+  struct NoRelax {
+    NoRelax() { relax_off = true; }
+    ~NoRelax() { relax_off = false; }
+  } no_relax;
+  BestFill b;
+  auto consider = [&](std::optional<FaceMesh> m) { return b.consider(std::move(m), 0); };
+  if (n == 4) {
+    if (consider(fill_quad(face))) return b.best;
+    if (consider(fill_ring(face))) return b.best;
+  }
+  for (FaceMesh& g : corner_grids(face))
+    if (consider(std::move(g))) return b.best;
+  if (n >= 6) {
+    // No fan split: its 60 untangling sweeps cost half the re-fill's time, and without it the
+    // 20 parts' worst quads were as good or better (cgal_wheel_16_spokes 0.747 -> 0.779).
+    std::optional<FaceMesh> pick = pick_unstructured(face, false, consider);
+    if (pick) return pick;
+  }
+  if (!b.best || b.best->min_jacobian < kAcceptJacobian) consider(fill_pairs(face));
+  if (b.best && b.best->min_jacobian > kMinValidJacobian) return b.best;
+  return std::nullopt;
 }
 
 namespace {

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,14 @@ double min_scaled_jacobian(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
 /// above kAcceptJacobian wins; otherwise the best valid one. Throws InternalError (with `where`
 /// in the message) when no template gives valid quads.
 FaceMesh fill_face(const FaceInput& face, const std::string& where);
+
+/// The quads of a cavity of a finished mesh (a polygon of any shape, read as one boundary
+/// side): the quad and ring templates, corner grids, then split from either parity and cut
+/// (the best acceptable on average, as fill_face), pairs when none is acceptable. No strips or
+/// O-grid (a cavity has no rails), no fan split, and the templates' relaxation is skipped (the
+/// caller relaxes the quads with those round the cavity). Nothing when no template gives
+/// valid quads.
+std::optional<FaceMesh> fill_cavity(const FaceInput& face);
 
 /// Templates are tried in order while their worst corner is below this scaled Jacobian.
 constexpr double kAcceptJacobian = 0.3;

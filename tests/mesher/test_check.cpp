@@ -477,3 +477,49 @@ TEST_CASE("edge flips re-split a pair of quads along their hexagon's best diagon
     CHECK(summarize(part, g.mesh).measures[6].worst == Approx(1.0));
   }
 }
+
+TEST_CASE("cavity re-fill mends bad quads and keeps the mesh valid and its boundary", "[check][refill]") {
+  const Part part = load_part(case_path("rect_10x4"));
+  GridMesh g = grid_mesh(part, 1.0);
+  REQUIRE(check_mesh(part, g.mesh).valid());
+  SECTION("a structured grid has nothing to mend") {
+    const QuadMesh before = g.mesh;
+    CHECK(refill_cavities(part, g.mesh, 10) == 0);
+    CHECK(g.mesh.nodes.size() == before.nodes.size());
+    CHECK(g.mesh.elements.size() == before.elements.size());
+  }
+  SECTION("a boundary node that one quad meets with a flat corner gets a second quad") {
+    // As in the flip test: quads (0, 0) and (1, 0) split along A-C instead of M-N, so that
+    // boundary node M is a corner of one quad only, a flat one (no relaxation can mend that:
+    // M stays on the boundary).
+    const PatchGrid& p = g.grids[0];
+    const std::uint32_t A = p.node(0, 0), M = p.node(1, 0), B = p.node(2, 0);
+    const std::uint32_t C = p.node(2, 1), N = p.node(1, 1), D = p.node(0, 1);
+    g.mesh.elements[p.element(0, 0)].nodes = {A, M, B, C};
+    g.mesh.elements[p.element(1, 0)].nodes = {C, N, D, A};
+    REQUIRE(summarize(part, g.mesh).measures[6].worst < 1e-9);
+    // The nodes of the patch boundary, which must all stay where they are.
+    std::map<std::pair<double, double>, int> boundary;
+    for (int i = 0; i <= p.nu; ++i)
+      for (int j = 0; j <= p.nv; ++j)
+        if (i == 0 || j == 0 || i == p.nu || j == p.nv) {
+          const Vec3 b = g.mesh.nodes[p.node(i, j)];
+          boundary[{b.x, b.y}] = 0;
+        }
+    CHECK(refill_cavities(part, g.mesh, 10) >= 1);
+    const MeshCheck check = check_mesh(part, g.mesh);
+    INFO(check.report());
+    CHECK(check.valid());
+    CHECK(summarize(part, g.mesh).measures[6].worst > 0.5);
+    for (const Vec3& n : g.mesh.nodes) {
+      const auto it = boundary.find({n.x, n.y});
+      if (it != boundary.end()) ++it->second;
+    }
+    for (const auto& [xy, count] : boundary) CHECK(count == 1);
+    // No node is left that no quad uses.
+    std::vector<bool> used(g.mesh.nodes.size(), false);
+    for (const MeshElement& e : g.mesh.elements)
+      for (std::uint32_t n : e.nodes) used[n] = true;
+    CHECK(std::count(used.begin(), used.end(), false) == 0);
+  }
+}

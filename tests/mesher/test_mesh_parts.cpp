@@ -263,3 +263,15 @@ TEST_CASE("the default size sees arcs that reach beyond the vertices", "[mesh][s
   CHECK(r.check.valid());
   CHECK(r.mesh.elements.size() < 20000);
 }
+
+TEST_CASE("a B-Rep vertex on a nearly straight boundary gets two quads, not one flat corner",
+          "[mesh][refill]") {
+  // The bracket's fillet meets a straight edge at a vertex with a 170-degree corner; its faces'
+  // templates left one quad there (worst scaled Jacobian 0.167). The cavity re-fill takes the
+  // quads round it out and fills them again across the faces' borders.
+  const Part part = load_part(samples_dir() + "/bracket.json");
+  const MeshPartResult r = mesh_part(part);
+  REQUIRE(r.check.valid());
+  CHECK(r.stats.cavity_refills > 0);
+  CHECK(r.quality.measures[6].worst > 0.5);
+}

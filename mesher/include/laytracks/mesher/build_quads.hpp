@@ -35,6 +35,7 @@ struct QuadStats {
   std::size_t parity_boundary = 0;  ///< boundary pieces given one more edge for parity
   std::size_t parity_rails = 0;     ///< rail segments given one more edge for parity
   std::size_t edge_flips = 0;       ///< quad pairs re-split by flip_edges
+  std::size_t cavity_refills = 0;   ///< cavities round bad quads filled again (refill_cavities)
   std::size_t loop_bridges = 0;     ///< loops no rail reached, joined by two bridge rails
   std::size_t disk_patches = 0;     ///< patches whose rails all met at one point: one face
 };
@@ -57,6 +58,18 @@ QuadResult build_quads(const Part& part, const CutGraph& graph, const QuadOption
 /// element count and the boundary are unchanged; no quad is made worse than the pair's worst.
 /// Edges in map order, each quad once a pass, up to four passes. Returns the flips made.
 std::size_t flip_edges(const Part& part, QuadMesh& mesh);
+
+/// Cavity re-fill (docs/mesher.md, "Cavity re-fill"), run after the flips and before the
+/// smoothing: round the worst quads below 0.7 of each patch (at most 32 + 1/50 of its quads a
+/// pass, two passes, the second near what the first changed), the quads across a quad's edges,
+/// else those at its nodes, else those at their nodes, are taken out as one polygon, filled
+/// again by the face templates (fill_cavity) and relaxed with the quads round them
+/// (`iterations` sweeps, at most 4); the new quads are kept when their worst beats the worst
+/// of the old ones relaxed the same way by 0.05. Each cavity is posed in its own frame on a
+/// grid, so every pose of a part makes the same choices. Boundary and seam nodes stay; the
+/// cavity's boundary, hence conformity, is unchanged; nodes that no element uses any more are
+/// removed (node and element order otherwise kept). Returns the re-fills kept.
+std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations);
 
 /// Smooths the interior nodes of every patch (`iterations` Laplacian sweeps in the patch
 /// frame, then as many untangling sweeps over nodes of quads below 0.3). Nodes on B-Rep edges never move; a move is kept only when no quad around the node

@@ -47,6 +47,7 @@ struct StageTimes {
   double medial = 0.0;
   double rails = 0.0;
   double quads = 0.0;
+  double refill = 0.0;  ///< refill_cavities
   double smooth = 0.0;
   double check = 0.0;
 };

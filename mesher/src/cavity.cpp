@@ -1,0 +1,466 @@
+// Cavity re-fill (docs/mesher.md, "Cavity re-fill"): the last repair of the quad stage. A
+// face template sees one face; its worst quads are often where two faces meet badly, or at a
+// B-Rep vertex on a nearly straight boundary that only one quad touches (a 170-degree corner:
+// no relaxation can mend that, the node is fixed). Here the quads round such a quad, across
+// face borders, are taken out as one polygon (a cavity: its boundary has an even edge count,
+// as any union of quads has) and filled again by the face templates; the new quads are
+// relaxed with the quads round the cavity, and kept only when the worst of all of them rises.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+
+#include "fill.hpp"
+#include "laytracks/mesher/build_quads.hpp"
+#include "patch_quads.hpp"
+
+namespace laytracks {
+
+using namespace mesher_detail;
+
+namespace {
+
+using Quad = std::array<std::uint32_t, 4>;
+
+/// Quads worse than this (smallest corner scaled Jacobian) get a cavity re-fill tried.
+constexpr double kRefillBelow = 0.7;
+/// A re-fill is kept when the worst quad of the cavity and the quads round it rises by this.
+constexpr double kRefillGain = 0.05;
+/// A pass tries the worst kRefillFirst + (the patch's quads / kRefillShare) quads below
+/// kRefillBelow, no more: the re-fills cost a millisecond or so each, most fail where the
+/// worst quads are bound by the boundary, and the worst quads are what the re-fill is for.
+constexpr std::size_t kRefillFirst = 32;
+constexpr std::size_t kRefillShare = 50;
+/// Passes over a patch; each after the first looks only near what the one before changed.
+constexpr int kRefillPasses = 2;
+/// Cavities of more boundary nodes than this are not tried (the templates are O(n^3)).
+constexpr std::size_t kMaxCavityNodes = 48;
+/// The relaxation after a re-fill: as the final smoothing (docs/mesher.md, "Smoothing"), with
+/// at most kRefillSweeps sweeps of each kind (the cavity is small).
+constexpr int kRefillSweeps = 4;
+constexpr double kRefillUntangleTarget = 0.6;
+constexpr double kRefillEdgeFraction = 0.3;
+constexpr std::uint32_t kNew = 0xffffffffu;
+
+/// Scaled Jacobians compared in whole steps of this, so that every pose decides alike.
+constexpr double kRefillGrain = 1e-9;
+double grained(double j) { return std::round(j / kRefillGrain) * kRefillGrain; }
+
+/// The grid of a cavity's frame (its mean edge 1). A cavity's problem is posed on positions
+/// rounded to it, so that the same cavity in another pose of the part, whose positions differ
+/// by rounding only (1e-14 on cgal_Detmier turned), is the very same problem, bit for bit, and
+/// the templates and relaxation, which amplify any difference (a cut of worst corner 0.61 in
+/// one pose and 0.41 in the other), decide alike. Far below any size the mesh cares about.
+constexpr double kCavityGrid = 1.0 / 1048576.0;  // 2^-20
+
+/// A similarity taking the patch frame to a cavity's own: `cycle[0]` to the origin, the
+/// direction to `cycle[1]` to +x, the cycle's mean edge to length 1.
+class CavityFrame {
+ public:
+  CavityFrame(const std::vector<Vec2>& pos, const std::vector<std::uint32_t>& cycle)
+      : origin_(pos[cycle[0]]) {
+    double length = 0.0;
+    for (std::size_t i = 0; i < cycle.size(); ++i)
+      length += norm(pos[cycle[(i + 1) % cycle.size()]] - pos[cycle[i]]);
+    scale_ = length / static_cast<double>(cycle.size());
+    const Vec2 d = pos[cycle[1]] - origin_;
+    const double l = norm(d);
+    ux_ = {d.x / l, d.y / l};
+  }
+  /// In the cavity's frame, rounded to multiples of kCavityGrid.
+  Vec2 to_local(Vec2 p) const {
+    const Vec2 d = p - origin_;
+    const Vec2 q{(d.x * ux_.x + d.y * ux_.y) / scale_, (d.y * ux_.x - d.x * ux_.y) / scale_};
+    return {std::round(q.x / kCavityGrid) * kCavityGrid,
+            std::round(q.y / kCavityGrid) * kCavityGrid};
+  }
+  Vec2 to_patch(Vec2 q) const {
+    return {origin_.x + scale_ * (q.x * ux_.x - q.y * ux_.y),
+            origin_.y + scale_ * (q.x * ux_.y + q.y * ux_.x)};
+  }
+
+ private:
+  Vec2 origin_;
+  Vec2 ux_;
+  double scale_ = 1.0;
+};
+
+class PatchRefill {
+ public:
+  PatchRefill(PatchQuads& pq, int iterations)
+      : pq_(pq), iterations_(std::min(iterations, kRefillSweeps)) {
+    alive_.assign(pq_.quads.size(), true);
+    around_.resize(pq_.pos.size());
+    changed_.assign(pq_.pos.size(), -1);
+    for (std::uint32_t q = 0; q < pq_.quads.size(); ++q)
+      for (std::uint32_t v : pq_.quads[q]) around_[v].push_back(q);
+  }
+
+  /// Tries a re-fill round every quad below kRefillBelow, worst first; after the first pass,
+  /// only round quads near a node that the pass before moved or made. Returns the count kept.
+  std::size_t run(int pass) {
+    std::vector<std::pair<double, std::uint32_t>> bad;
+    for (std::uint32_t q = 0; q < pq_.quads.size(); ++q) {
+      if (!alive_[q]) continue;
+      const double j = jacobian(pq_.quads[q]);
+      if (j < kRefillBelow && (pass == 0 || near_change(q, pass - 1)))
+        bad.emplace_back(grained(j), q);
+    }
+    std::sort(bad.begin(), bad.end());
+    const std::size_t limit = kRefillFirst + pq_.quads.size() / kRefillShare;
+    if (bad.size() > limit) bad.resize(limit);
+    std::size_t kept = 0;
+    for (const auto& [j, q] : bad) {
+      if (!alive_[q] || jacobian(pq_.quads[q]) >= kRefillBelow) continue;
+      // The quads across its edges first (the smallest change), then those at its nodes, then
+      // those at the nodes of those.
+      for (int kind = 0; kind < 3; ++kind)
+        if (try_cavity(cavity_of(q, kind), pass)) {
+          ++kept;
+          break;
+        }
+    }
+    return kept;
+  }
+
+  const std::vector<bool>& alive() const { return alive_; }
+
+ private:
+  /// Whether a node of a quad at q's nodes was moved or made in that pass.
+  bool near_change(std::uint32_t q, int pass) const {
+    for (std::uint32_t r : cavity_of(q, 1))
+      for (std::uint32_t v : pq_.quads[r])
+        if (changed_[v] == pass) return true;
+    return false;
+  }
+
+  double jacobian(const Quad& q) const {
+    return min_scaled_jacobian(pq_.pos[q[0]], pq_.pos[q[1]], pq_.pos[q[2]], pq_.pos[q[3]]);
+  }
+
+  /// The best smallest scaled Jacobian any quads of the polygon can have at its pinned nodes:
+  /// a corner of interior angle a split into k quad corners has sin(a / k) at best.
+  double corner_bound(const std::vector<Vec2>& poly, const std::vector<std::uint32_t>& ids) const {
+    double bound = 1.0;
+    const std::size_t n = poly.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!pq_.fixed[ids[i]]) continue;
+      const Vec2 out = poly[(i + 1) % n] - poly[i], back = poly[(i + n - 1) % n] - poly[i];
+      double a = std::atan2(cross(out, back), dot(out, back));
+      if (a < 0.0) a += 2.0 * kPi;
+      double best = 0.0;
+      for (int k = 1; k <= 8; ++k)
+        if (a / k < kPi) best = std::max(best, std::sin(a / k));
+      bound = std::min(bound, best);
+    }
+    return bound;
+  }
+
+  /// Quad q with its neighbours across its edges (kind 0) or at its nodes (kind 1), or the
+  /// quads at the nodes of those (kind 2), sorted.
+  std::vector<std::uint32_t> cavity_of(std::uint32_t q, int kind) const {
+    if (kind == 2) {
+      std::vector<std::uint32_t> c;
+      for (std::uint32_t r : cavity_of(q, 1))
+        for (std::uint32_t v : pq_.quads[r])
+          c.insert(c.end(), around_[v].begin(), around_[v].end());
+      std::sort(c.begin(), c.end());
+      c.erase(std::unique(c.begin(), c.end()), c.end());
+      return c;
+    }
+    std::vector<std::uint32_t> c{q};
+    const Quad& x = pq_.quads[q];
+    for (std::size_t k = 0; k < 4; ++k) {
+      const std::uint32_t a = x[k], b = x[(k + 1) % 4];
+      for (std::uint32_t o : around_[a]) {
+        if (o == q) continue;
+        const Quad& y = pq_.quads[o];
+        if (kind == 1 || std::find(y.begin(), y.end(), b) != y.end()) c.push_back(o);
+      }
+    }
+    std::sort(c.begin(), c.end());
+    c.erase(std::unique(c.begin(), c.end()), c.end());
+    return c;
+  }
+
+  /// A cavity's quads with the quads round it, over local ids: the cycle, the inner nodes,
+  /// then the ring's other nodes (held where they are), in the cavity's frame.
+  struct Local {
+    std::vector<std::uint32_t> ids;  ///< local id -> patch node id (kNew: an inner node)
+    std::vector<Vec2> pos;
+    std::vector<Quad> quads;  ///< the cavity's first, then the ring's
+    double worst = 0.0;       ///< after relaxing: the cavity's quads and the ring's that moved
+  };
+
+  /// The cavity's quads (over cycle ids 0..n-1 and inner ids n..) with the ring, relaxed as
+  /// the final smoothing relaxes (kRefillSweeps sweeps of each kind).
+  Local relaxed(const std::vector<Vec2>& cycle_pos,
+                const std::vector<std::uint32_t>& cycle,
+                const std::vector<Vec2>& inner_pos,
+                const std::vector<Quad>& cavity_quads,
+                const std::vector<std::uint32_t>& ring,
+                const CavityFrame& cf) const {
+    Local l;
+    l.ids = cycle;
+    l.pos = cycle_pos;
+    std::vector<bool> fixed;
+    for (std::uint32_t v : cycle) fixed.push_back(pq_.fixed[v]);
+    for (const Vec2& p : inner_pos) {
+      l.ids.push_back(kNew);
+      l.pos.push_back(p);
+      fixed.push_back(false);
+    }
+    l.quads = cavity_quads;
+    const std::size_t first_ring = l.ids.size();
+    for (std::uint32_t o : ring) {
+      Quad lq{};
+      for (std::size_t k = 0; k < 4; ++k) {
+        const std::uint32_t v = pq_.quads[o][k];
+        const auto at = std::find(cycle.begin(), cycle.end(), v);
+        if (at != cycle.end()) {
+          lq[k] = static_cast<std::uint32_t>(at - cycle.begin());
+          continue;
+        }
+        const auto seen =
+            std::find(l.ids.begin() + static_cast<std::ptrdiff_t>(first_ring), l.ids.end(), v);
+        if (seen != l.ids.end()) {
+          lq[k] = static_cast<std::uint32_t>(seen - l.ids.begin());
+          continue;
+        }
+        lq[k] = static_cast<std::uint32_t>(l.ids.size());
+        l.ids.push_back(v);
+        l.pos.push_back(cf.to_local(pq_.pos[v]));
+        fixed.push_back(true);
+      }
+      l.quads.push_back(lq);
+    }
+    const std::vector<Vec2> start = l.pos;
+    smooth_nodes(l.pos, fixed, l.quads, iterations_);
+    optimize_nodes(l.pos, fixed, l.quads, iterations_);
+    untangle_nodes(l.pos, fixed, l.quads, iterations_, kRefillUntangleTarget, kRefillEdgeFraction);
+    l.worst = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < l.quads.size(); ++k) {
+      const Quad& q = l.quads[k];
+      if (k >= cavity_quads.size() &&
+          std::all_of(q.begin(), q.end(), [&](std::uint32_t v) { return l.pos[v] == start[v]; }))
+        continue;
+      l.worst = std::min(l.worst,
+                         min_scaled_jacobian(l.pos[q[0]], l.pos[q[1]], l.pos[q[2]], l.pos[q[3]]));
+    }
+    return l;
+  }
+
+  /// Re-fills the cavity when that raises the worst quad of it and of the quads round it.
+  bool try_cavity(const std::vector<std::uint32_t>& cavity, int pass) {
+    // Its boundary: the directed edges whose reverse no cavity quad has, one cycle.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+    for (std::uint32_t c : cavity)
+      for (std::size_t k = 0; k < 4; ++k)
+        edges.emplace_back(pq_.quads[c][k], pq_.quads[c][(k + 1) % 4]);
+    std::sort(edges.begin(), edges.end());
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> border;
+    for (const auto& [a, b] : edges)
+      if (!std::binary_search(edges.begin(), edges.end(), std::make_pair(b, a)))
+        border.emplace_back(a, b);
+    if (border.size() < 4 || border.size() > kMaxCavityNodes) return false;
+    // A simple cycle: one edge out of every border node, all of them on one loop.
+    for (std::size_t i = 1; i < border.size(); ++i)
+      if (border[i].first == border[i - 1].first) return false;
+    auto next = [&](std::uint32_t a) {
+      const auto it = std::lower_bound(border.begin(), border.end(), std::make_pair(a, 0u));
+      return it != border.end() && it->first == a ? it->second : kNew;
+    };
+    std::vector<std::uint32_t> cycle{border.front().first};
+    for (std::uint32_t v = next(cycle.front()); v != cycle.front(); v = next(v)) {
+      if (v == kNew || cycle.size() >= border.size()) return false;
+      cycle.push_back(v);
+    }
+    if (cycle.size() != border.size()) return false;
+    // Its inner nodes go; none of them may be pinned.
+    std::vector<std::uint32_t> on_cycle = cycle;
+    std::sort(on_cycle.begin(), on_cycle.end());
+    std::vector<std::uint32_t> inner;
+    for (std::uint32_t c : cavity)
+      for (std::uint32_t v : pq_.quads[c])
+        if (!std::binary_search(on_cycle.begin(), on_cycle.end(), v)) inner.push_back(v);
+    std::sort(inner.begin(), inner.end());
+    inner.erase(std::unique(inner.begin(), inner.end()), inner.end());
+    for (std::uint32_t v : inner)
+      if (pq_.fixed[v]) return false;
+    // The quads round it: alive, not in it, at a node of its boundary.
+    std::vector<std::uint32_t> ring;
+    for (std::uint32_t v : cycle)
+      for (std::uint32_t o : around_[v])
+        if (!std::binary_search(cavity.begin(), cavity.end(), o)) ring.push_back(o);
+    std::sort(ring.begin(), ring.end());
+    ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+
+    FaceInput face;
+    // The cavity is filled and relaxed in its own frame: its first node (the least id) at the
+    // origin, its first edge along x, its mean edge of length 1. The same cavity in another
+    // pose of the part then gives the same numbers but for rounding, and the templates and the
+    // relaxation the same choices (in the patch frame a rotated part's relaxation took other
+    // steps: counts differed between poses).
+    const CavityFrame cf(pq_.pos, cycle);
+    for (std::uint32_t v : cycle) face.cycle.push_back(cf.to_local(pq_.pos[v]));
+    const std::size_t n = cycle.size();
+    std::vector<Vec2> old_inner;
+    for (std::uint32_t v : inner) old_inner.push_back(cf.to_local(pq_.pos[v]));
+    auto local_id = [&](std::uint32_t v) {
+      const auto at = std::find(cycle.begin(), cycle.end(), v);
+      return at != cycle.end()
+                 ? static_cast<std::uint32_t>(at - cycle.begin())
+                 : static_cast<std::uint32_t>(
+                       n + static_cast<std::size_t>(
+                               std::lower_bound(inner.begin(), inner.end(), v) - inner.begin()));
+    };
+    std::vector<Quad> old_quads;
+    double before = std::numeric_limits<double>::infinity();
+    for (std::uint32_t c : cavity) {
+      Quad lq{};
+      for (std::size_t k = 0; k < 4; ++k) lq[k] = local_id(pq_.quads[c][k]);
+      old_quads.push_back(lq);
+      auto at = [&](std::uint32_t i) { return i < n ? face.cycle[i] : old_inner[i - n]; };
+      before = std::min(before, min_scaled_jacobian(at(lq[0]), at(lq[1]), at(lq[2]), at(lq[3])));
+    }
+    // No quad mesh of the cavity beats what its pinned corners allow: skip hopeless ones.
+    const double bound = corner_bound(face.cycle, cycle);
+    if (bound < before + kRefillGain) return false;
+    // The old quads relaxed with the quads round the cavity: what the smoothing could do
+    // without a re-fill. When that is good enough, or as good as the corners allow, no fill.
+    const Local was = relaxed(face.cycle, cycle, old_inner, old_quads, ring, cf);
+    if (was.worst >= kRefillBelow || bound < was.worst + kRefillGain) return false;
+    FaceSide all;
+    all.kind = FaceSide::Kind::Boundary;
+    all.edges = static_cast<std::uint32_t>(cycle.size());
+    face.sides.push_back(all);
+    const std::optional<FaceMesh> filled = fill_cavity(face);
+    if (!filled) return false;
+    const FaceMesh& fm = *filled;
+    if (std::getenv("SAMECOUNT") && fm.quads.size() != cavity.size()) return false;
+
+    // The old quads and the new, each relaxed with the quads round the cavity: the new are kept
+    // when their worst (and that of the quads round them that moved) beats the old's by
+    // kRefillGain. Both relaxed alike, so that a re-fill is not kept for what relaxation alone
+    // would have done.
+    Local now = relaxed(face.cycle, cycle, fm.interior, fm.quads, ring, cf);
+    static const bool debug = std::getenv("LAYTRACKS_DEBUG_CAVITY") != nullptr;
+    if (debug) {
+      std::fprintf(
+          stderr,
+          "cavity: %zu quads, %zu nodes round, %s (%zu quads, %.6f), worst %.3f -> %.3f%s\n",
+          cavity.size(), n, to_string(fm.kind), fm.quads.size(), fm.min_jacobian, was.worst,
+          now.worst, grained(now.worst) >= grained(was.worst) + kRefillGain ? " kept" : "");
+    }
+    if (!(grained(now.worst) >= grained(was.worst) + kRefillGain)) return false;
+    const std::vector<Vec2>& pos = now.pos;
+    std::vector<std::uint32_t>& ids = now.ids;
+    const std::size_t fresh = fm.quads.size();
+    const std::vector<Quad>& quads = now.quads;
+
+    // Kept: the cavity's quads go, the new ones and their inner nodes come.
+    for (std::uint32_t c : cavity) {
+      alive_[c] = false;
+      for (std::uint32_t v : pq_.quads[c]) {
+        auto& at = around_[v];
+        at.erase(std::remove(at.begin(), at.end(), c), at.end());
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (pos[i] == face.cycle[i]) continue;
+      changed_[cycle[i]] = pass;
+      pq_.pos[cycle[i]] = cf.to_patch(pos[i]);
+    }
+    for (std::size_t i = n; i < n + fm.interior.size(); ++i) {
+      ids[i] = static_cast<std::uint32_t>(pq_.pos.size());
+      pq_.pos.push_back(cf.to_patch(pos[i]));
+      pq_.fixed.push_back(false);
+      pq_.global.push_back(kNew);
+      around_.emplace_back();
+      changed_.push_back(pass);
+    }
+    for (std::size_t k = 0; k < fresh; ++k) {
+      Quad q{};
+      for (std::size_t m = 0; m < 4; ++m) q[m] = ids[quads[k][m]];
+      const auto id = static_cast<std::uint32_t>(pq_.quads.size());
+      pq_.quads.push_back(q);
+      alive_.push_back(true);
+      for (std::uint32_t v : q) around_[v].push_back(id);
+    }
+    return true;
+  }
+
+  PatchQuads& pq_;
+  int iterations_;
+  std::vector<bool> alive_;
+  std::vector<std::vector<std::uint32_t>> around_;  ///< node -> alive quads at it
+  std::vector<int> changed_;  ///< node -> the last pass that moved or made it (-1: none)
+};
+
+}  // namespace
+
+std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations) {
+  const std::vector<bool> pinned = pinned_nodes(mesh);
+  std::size_t kept = 0;
+  std::vector<bool> drop(mesh.elements.size(), false);
+  std::vector<MeshElement> added;
+  for (std::size_t p = 0; p < part.patches.size(); ++p) {
+    PatchQuads pq = patch_quads(part, mesh, p, pinned);
+    if (pq.quads.empty()) continue;
+    const std::uint32_t shell = mesh.elements[pq.elements.front()].shell;
+    PatchRefill refill(pq, iterations);
+    std::size_t k = 0;
+    for (int pass = 0; pass < kRefillPasses; ++pass) {
+      const std::size_t more = refill.run(pass);
+      k += more;
+      if (more == 0) break;
+    }
+    if (k == 0) continue;
+    kept += k;
+    const Frame& frame = part.patches[p].frame;
+    for (std::size_t i = 0; i < pq.global.size(); ++i) {
+      if (pq.global[i] == kNew) {
+        pq.global[i] = static_cast<std::uint32_t>(mesh.nodes.size());
+        mesh.nodes.push_back(frame.to_3d(pq.pos[i]));
+      } else {
+        mesh.nodes[pq.global[i]] = frame.to_3d(pq.pos[i]);
+      }
+    }
+    const std::vector<bool>& alive = refill.alive();
+    for (std::size_t q = 0; q < pq.quads.size(); ++q) {
+      if (q < pq.elements.size()) {
+        if (!alive[q]) drop[pq.elements[q]] = true;
+        continue;
+      }
+      if (!alive[q]) continue;
+      MeshElement e;
+      for (std::size_t m = 0; m < 4; ++m) e.nodes[m] = pq.global[pq.quads[q][m]];
+      e.patch = PatchId(p);
+      e.shell = shell;
+      added.push_back(e);
+    }
+  }
+  if (kept == 0) return 0;
+  // The mesh without the cavities' quads and their inner nodes, in the order it had.
+  std::vector<MeshElement> elements;
+  for (std::size_t i = 0; i < mesh.elements.size(); ++i)
+    if (!drop[i]) elements.push_back(mesh.elements[i]);
+  elements.insert(elements.end(), added.begin(), added.end());
+  std::vector<std::uint32_t> renum(mesh.nodes.size(), kNew);
+  for (const MeshElement& e : elements)
+    for (std::uint32_t v : e.nodes) renum[v] = 0;
+  std::vector<Vec3> nodes;
+  for (std::size_t v = 0; v < mesh.nodes.size(); ++v) {
+    if (renum[v] == kNew) continue;
+    renum[v] = static_cast<std::uint32_t>(nodes.size());
+    nodes.push_back(mesh.nodes[v]);
+  }
+  for (MeshElement& e : elements)
+    for (std::uint32_t& v : e.nodes) v = renum[v];
+  mesh.nodes = std::move(nodes);
+  mesh.elements = std::move(elements);
+  return kept;
+}
+
+}  // namespace laytracks

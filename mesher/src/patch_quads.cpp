@@ -1,0 +1,69 @@
+#include "patch_quads.hpp"
+
+#include <algorithm>
+
+namespace laytracks::mesher_detail {
+
+namespace {
+constexpr std::uint32_t kUnset = 0xffffffffu;
+}  // namespace
+
+std::vector<bool> pinned_nodes(const QuadMesh& mesh) {
+  const std::size_t nn = mesh.nodes.size();
+  std::vector<std::uint32_t> patch_of(nn, kUnset);
+  std::vector<bool> pinned(nn, false);
+  std::vector<std::uint64_t> edges;
+  edges.reserve(4 * mesh.elements.size());
+  for (const MeshElement& e : mesh.elements) {
+    const std::size_t corners = e.is_quad() ? 4 : 3;
+    for (std::size_t k = 0; k < corners; ++k) {
+      const std::uint32_t v = e.nodes[k];
+      if (patch_of[v] == kUnset)
+        patch_of[v] = e.patch.value;
+      else if (patch_of[v] != e.patch.value)
+        pinned[v] = true;
+      const auto [a, b] = std::minmax(v, e.nodes[(k + 1) % corners]);
+      edges.push_back(std::uint64_t{a} << 32 | b);
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i + 1;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) {
+      pinned[static_cast<std::size_t>(edges[i] >> 32)] = true;
+      pinned[static_cast<std::size_t>(edges[i] & 0xffffffffu)] = true;
+    }
+    i = j;
+  }
+  return pinned;
+}
+
+PatchQuads patch_quads(const Part& part,
+                       const QuadMesh& mesh,
+                       std::size_t p,
+                       const std::vector<bool>& pinned) {
+  const Frame& frame = part.patches[p].frame;
+  PatchQuads pq;
+  std::vector<std::uint32_t> local(mesh.nodes.size(), kUnset);
+  for (std::size_t i = 0; i < mesh.elements.size(); ++i) {
+    const MeshElement& e = mesh.elements[i];
+    if (e.patch.index() != p || !e.is_quad()) continue;
+    std::array<std::uint32_t, 4> q{};
+    for (std::size_t k = 0; k < 4; ++k) {
+      const std::uint32_t v = e.nodes[k];
+      if (local[v] == kUnset) {
+        local[v] = static_cast<std::uint32_t>(pq.global.size());
+        pq.global.push_back(v);
+        pq.pos.push_back(frame.to_2d(mesh.nodes[v]));
+        pq.fixed.push_back(pinned[v]);
+      }
+      q[k] = local[v];
+    }
+    pq.quads.push_back(q);
+    pq.elements.push_back(static_cast<std::uint32_t>(i));
+  }
+  return pq;
+}
+
+}  // namespace laytracks::mesher_detail

@@ -1,0 +1,33 @@
+// Private: the quads of one patch in its own frame, with local node ids, for the passes that
+// work on a finished mesh patch by patch (smoothing, cavity re-fill).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "laytracks/brep/part.hpp"
+#include "laytracks/mesher/quad_mesh.hpp"
+
+namespace laytracks::mesher_detail {
+
+/// The nodes that no pass may move or remove: nodes used by elements of several patches, and
+/// nodes on a mesh edge that only one element uses (a free edge, or a patch's boundary).
+std::vector<bool> pinned_nodes(const QuadMesh& mesh);
+
+/// The elements of patch p, in mesh order, over local node ids.
+struct PatchQuads {
+  std::vector<std::uint32_t> global;  ///< local node id -> mesh node id
+  std::vector<Vec2> pos;              ///< local node id -> position in the patch frame
+  std::vector<bool> fixed;            ///< local node id -> pinned (pinned_nodes)
+  std::vector<std::array<std::uint32_t, 4>> quads;  ///< local ids, counter-clockwise
+  std::vector<std::uint32_t> elements;              ///< quad -> mesh element index
+};
+
+/// Patch p's quads; `pinned` is pinned_nodes(mesh). Nodes are numbered in order of first use.
+PatchQuads patch_quads(const Part& part,
+                       const QuadMesh& mesh,
+                       std::size_t p,
+                       const std::vector<bool>& pinned);
+
+}  // namespace laytracks::mesher_detail
