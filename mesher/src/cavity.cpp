@@ -26,7 +26,7 @@ using Quad = std::array<std::uint32_t, 4>;
 /// Quads worse than this (smallest corner scaled Jacobian) get a cavity re-fill tried.
 constexpr double kRefillBelow = 0.7;
 /// A re-fill is kept when the worst quad of the cavity and the quads round it rises by this.
-constexpr double kRefillGain = 0.05;
+constexpr double kRefillGain = 0.02;
 /// A pass tries the worst kRefillFirst + (the patch's quads / kRefillShare) quads below
 /// kRefillBelow, no more: the re-fills cost a millisecond or so each, most fail where the
 /// worst quads are bound by the boundary, and the worst quads are what the re-fill is for.

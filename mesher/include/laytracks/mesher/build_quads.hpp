@@ -65,7 +65,7 @@ std::size_t flip_edges(const Part& part, QuadMesh& mesh);
 /// else those at its nodes, else those at their nodes, are taken out as one polygon, filled
 /// again by the face templates (fill_cavity) and relaxed with the quads round them
 /// (`iterations` sweeps, at most 4); the new quads are kept when their worst beats the worst
-/// of the old ones relaxed the same way by 0.05. Each cavity is posed in its own frame on a
+/// of the old ones relaxed the same way by 0.02. Each cavity is posed in its own frame on a
 /// grid, so every pose of a part makes the same choices. Boundary and seam nodes stay; the
 /// cavity's boundary, hence conformity, is unchanged; nodes that no element uses any more are
 /// removed (node and element order otherwise kept). Returns the re-fills kept.
