@@ -449,24 +449,36 @@ TEST_CASE("the node grid finds every point near a segment and every close pair",
   CHECK(grid.close_pairs(close) == brute);
 }
 
-TEST_CASE("edge flips re-split a pair of quads along their hexagon's best diagonal", "[check][flip]") {
+namespace {
+
+/// Quads (0, 0) and (1, 0) of patch 0's grid make a 2 x 1 block A M B / D N C; split along A-C
+/// instead of M-N, the first quad has a flat corner at boundary node M (scaled Jacobian 0).
+void split_along_wrong_diagonal(GridMesh& g) {
+  const PatchGrid& p = g.grids[0];
+  const std::uint32_t A = p.node(0, 0), M = p.node(1, 0), B = p.node(2, 0);
+  const std::uint32_t C = p.node(2, 1), N = p.node(1, 1), D = p.node(0, 1);
+  g.mesh.elements[p.element(0, 0)].nodes = {A, M, B, C};
+  g.mesh.elements[p.element(1, 0)].nodes = {C, N, D, A};
+}
+
+}  // namespace
+
+TEST_CASE("edge flips re-split a pair of quads along their hexagon's best diagonal",
+          "[check][flip][refill]") {
   const Part part = load_part(case_path("rect_10x4"));
   GridMesh g = grid_mesh(part, 1.0);
   REQUIRE(check_mesh(part, g.mesh).valid());
-  SECTION("a structured grid has nothing to flip") {
+  SECTION("a structured grid has nothing to flip, nor to re-fill") {
     const QuadMesh before = g.mesh;
     CHECK(flip_edges(part, g.mesh) == 0);
+    CHECK(refill_cavities(part, g.mesh, 10) == 0);
+    REQUIRE(g.mesh.elements.size() == before.elements.size());
+    CHECK(g.mesh.nodes.size() == before.nodes.size());
     for (std::size_t k = 0; k < before.elements.size(); ++k)
       CHECK(g.mesh.elements[k].nodes == before.elements[k].nodes);
   }
   SECTION("two squares split along the wrong diagonal become two squares again") {
-    // Quads (0, 0) and (1, 0) make a 2 x 1 block A M B / D N C; split along A-C instead of
-    // M-N, the first quad has a flat corner at M (scaled Jacobian 0).
-    const PatchGrid& p = g.grids[0];
-    const std::uint32_t A = p.node(0, 0), M = p.node(1, 0), B = p.node(2, 0);
-    const std::uint32_t C = p.node(2, 1), N = p.node(1, 1), D = p.node(0, 1);
-    g.mesh.elements[p.element(0, 0)].nodes = {A, M, B, C};
-    g.mesh.elements[p.element(1, 0)].nodes = {C, N, D, A};
+    split_along_wrong_diagonal(g);
     REQUIRE_FALSE(check_mesh(part, g.mesh).valid());  // rule 2: a flat corner
     const std::size_t count = g.mesh.elements.size();
     CHECK(flip_edges(part, g.mesh) == 1);
@@ -478,48 +490,36 @@ TEST_CASE("edge flips re-split a pair of quads along their hexagon's best diagon
   }
 }
 
-TEST_CASE("cavity re-fill mends bad quads and keeps the mesh valid and its boundary", "[check][refill]") {
+TEST_CASE("cavity re-fill gives a boundary node that one quad meets flat a second quad",
+          "[check][refill]") {
   const Part part = load_part(case_path("rect_10x4"));
   GridMesh g = grid_mesh(part, 1.0);
-  REQUIRE(check_mesh(part, g.mesh).valid());
-  SECTION("a structured grid has nothing to mend") {
-    const QuadMesh before = g.mesh;
-    CHECK(refill_cavities(part, g.mesh, 10) == 0);
-    CHECK(g.mesh.nodes.size() == before.nodes.size());
-    CHECK(g.mesh.elements.size() == before.elements.size());
+  // Boundary node M is a corner of one quad only, a flat one: no relaxation can mend that
+  // (M stays on the boundary).
+  split_along_wrong_diagonal(g);
+  const PatchGrid& p = g.grids[0];
+  REQUIRE(summarize(part, g.mesh).measures[6].worst < 1e-9);
+  // The nodes of the patch boundary, which must all stay where they are.
+  std::map<std::pair<double, double>, int> boundary;
+  for (int i = 0; i <= p.nu; ++i)
+    for (int j = 0; j <= p.nv; ++j)
+      if (i == 0 || j == 0 || i == p.nu || j == p.nv) {
+        const Vec3 b = g.mesh.nodes[p.node(i, j)];
+        boundary[{b.x, b.y}] = 0;
+      }
+  CHECK(refill_cavities(part, g.mesh, 10) >= 1);
+  const MeshCheck check = check_mesh(part, g.mesh);
+  INFO(check.report());
+  CHECK(check.valid());
+  CHECK(summarize(part, g.mesh).measures[6].worst > 0.5);
+  for (const Vec3& n : g.mesh.nodes) {
+    const auto it = boundary.find({n.x, n.y});
+    if (it != boundary.end()) ++it->second;
   }
-  SECTION("a boundary node that one quad meets with a flat corner gets a second quad") {
-    // As in the flip test: quads (0, 0) and (1, 0) split along A-C instead of M-N, so that
-    // boundary node M is a corner of one quad only, a flat one (no relaxation can mend that:
-    // M stays on the boundary).
-    const PatchGrid& p = g.grids[0];
-    const std::uint32_t A = p.node(0, 0), M = p.node(1, 0), B = p.node(2, 0);
-    const std::uint32_t C = p.node(2, 1), N = p.node(1, 1), D = p.node(0, 1);
-    g.mesh.elements[p.element(0, 0)].nodes = {A, M, B, C};
-    g.mesh.elements[p.element(1, 0)].nodes = {C, N, D, A};
-    REQUIRE(summarize(part, g.mesh).measures[6].worst < 1e-9);
-    // The nodes of the patch boundary, which must all stay where they are.
-    std::map<std::pair<double, double>, int> boundary;
-    for (int i = 0; i <= p.nu; ++i)
-      for (int j = 0; j <= p.nv; ++j)
-        if (i == 0 || j == 0 || i == p.nu || j == p.nv) {
-          const Vec3 b = g.mesh.nodes[p.node(i, j)];
-          boundary[{b.x, b.y}] = 0;
-        }
-    CHECK(refill_cavities(part, g.mesh, 10) >= 1);
-    const MeshCheck check = check_mesh(part, g.mesh);
-    INFO(check.report());
-    CHECK(check.valid());
-    CHECK(summarize(part, g.mesh).measures[6].worst > 0.5);
-    for (const Vec3& n : g.mesh.nodes) {
-      const auto it = boundary.find({n.x, n.y});
-      if (it != boundary.end()) ++it->second;
-    }
-    for (const auto& [xy, count] : boundary) CHECK(count == 1);
-    // No node is left that no quad uses.
-    std::vector<bool> used(g.mesh.nodes.size(), false);
-    for (const MeshElement& e : g.mesh.elements)
-      for (std::uint32_t n : e.nodes) used[n] = true;
-    CHECK(std::count(used.begin(), used.end(), false) == 0);
-  }
+  for (const auto& [xy, count] : boundary) CHECK(count == 1);
+  // No node is left that no quad uses.
+  std::vector<bool> used(g.mesh.nodes.size(), false);
+  for (const MeshElement& e : g.mesh.elements)
+    for (std::uint32_t n : e.nodes) used[n] = true;
+  CHECK(std::count(used.begin(), used.end(), false) == 0);
 }
