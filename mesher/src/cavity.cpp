@@ -47,45 +47,6 @@ constexpr std::uint32_t kNew = 0xffffffffu;
 constexpr double kRefillGrain = 1e-9;
 double grained(double j) { return std::round(j / kRefillGrain) * kRefillGrain; }
 
-/// The grid of a cavity's frame (its mean edge 1). A cavity's problem is posed on positions
-/// rounded to it, so that the same cavity in another pose of the part, whose positions differ
-/// by rounding only (1e-14 on cgal_Detmier turned), is the very same problem, bit for bit, and
-/// the templates and relaxation, which amplify any difference (a cut of worst corner 0.61 in
-/// one pose and 0.41 in the other), decide alike. Far below any size the mesh cares about.
-constexpr double kCavityGrid = 1.0 / 1048576.0;  // 2^-20
-
-/// A similarity taking the patch frame to a cavity's own: `cycle[0]` to the origin, the
-/// direction to `cycle[1]` to +x, the cycle's mean edge to length 1.
-class CavityFrame {
- public:
-  CavityFrame(const std::vector<Vec2>& pos, const std::vector<std::uint32_t>& cycle)
-      : origin_(pos[cycle[0]]) {
-    double length = 0.0;
-    for (std::size_t i = 0; i < cycle.size(); ++i)
-      length += norm(pos[cycle[(i + 1) % cycle.size()]] - pos[cycle[i]]);
-    scale_ = length / static_cast<double>(cycle.size());
-    const Vec2 d = pos[cycle[1]] - origin_;
-    const double l = norm(d);
-    ux_ = {d.x / l, d.y / l};
-  }
-  /// In the cavity's frame, rounded to multiples of kCavityGrid.
-  Vec2 to_local(Vec2 p) const {
-    const Vec2 d = p - origin_;
-    const Vec2 q{(d.x * ux_.x + d.y * ux_.y) / scale_, (d.y * ux_.x - d.x * ux_.y) / scale_};
-    return {std::round(q.x / kCavityGrid) * kCavityGrid,
-            std::round(q.y / kCavityGrid) * kCavityGrid};
-  }
-  Vec2 to_patch(Vec2 q) const {
-    return {origin_.x + scale_ * (q.x * ux_.x - q.y * ux_.y),
-            origin_.y + scale_ * (q.x * ux_.y + q.y * ux_.x)};
-  }
-
- private:
-  Vec2 origin_;
-  Vec2 ux_;
-  double scale_ = 1.0;
-};
-
 class PatchRefill {
  public:
   PatchRefill(PatchQuads& pq, int iterations)
@@ -200,7 +161,7 @@ class PatchRefill {
                 const std::vector<Vec2>& inner_pos,
                 const std::vector<Quad>& cavity_quads,
                 const std::vector<std::uint32_t>& ring,
-                const CavityFrame& cf) const {
+                const LocalFrame& cf) const {
     Local l;
     l.ids = cycle;
     l.pos = cycle_pos;
@@ -297,12 +258,10 @@ class PatchRefill {
     ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
 
     FaceInput face;
-    // The cavity is filled and relaxed in its own frame: its first node (the least id) at the
-    // origin, its first edge along x, its mean edge of length 1. The same cavity in another
-    // pose of the part then gives the same numbers but for rounding, and the templates and the
-    // relaxation the same choices (in the patch frame a rotated part's relaxation took other
-    // steps: counts differed between poses).
-    const CavityFrame cf(pq_.pos, cycle);
+    // The cavity is filled and relaxed in its own gridded frame (LocalFrame: its first node,
+    // the least id, at the origin): the same cavity in every pose of the part is the same
+    // problem, bit for bit, and the templates and the relaxation decide alike.
+    const LocalFrame cf(pq_.pos, cycle);
     for (std::uint32_t v : cycle) face.cycle.push_back(cf.to_local(pq_.pos[v]));
     const std::size_t n = cycle.size();
     std::vector<Vec2> old_inner;

@@ -40,6 +40,40 @@ const char* to_string(FillKind kind) {
   return "?";
 }
 
+LocalFrame::LocalFrame(const std::vector<Vec2>& pos, const std::vector<std::uint32_t>& ids) {
+  double length = 0.0;
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    length += norm(pos[ids[(i + 1) % ids.size()]] - pos[ids[i]]);
+  init(pos[ids[0]], pos[ids[1]], length / static_cast<double>(ids.size()));
+}
+
+LocalFrame::LocalFrame(const std::vector<Vec2>& cycle) {
+  double length = 0.0;
+  for (std::size_t i = 0; i < cycle.size(); ++i)
+    length += norm(cycle[(i + 1) % cycle.size()] - cycle[i]);
+  init(cycle[0], cycle[1], length / static_cast<double>(cycle.size()));
+}
+
+void LocalFrame::init(Vec2 first, Vec2 second, double mean_edge) {
+  origin_ = first;
+  scale_ = mean_edge;
+  const Vec2 d = second - first;
+  const double l = norm(d);
+  ux_ = l > 0.0 ? Vec2{d.x / l, d.y / l} : Vec2{1.0, 0.0};
+  if (!(scale_ > 0.0)) scale_ = 1.0;
+}
+
+Vec2 LocalFrame::to_local(Vec2 p) const {
+  const Vec2 d = p - origin_;
+  const Vec2 q{(d.x * ux_.x + d.y * ux_.y) / scale_, (d.y * ux_.x - d.x * ux_.y) / scale_};
+  return {std::round(q.x / kLocalGrid) * kLocalGrid, std::round(q.y / kLocalGrid) * kLocalGrid};
+}
+
+Vec2 LocalFrame::to_patch(Vec2 q) const {
+  return {origin_.x + scale_ * (q.x * ux_.x - q.y * ux_.y),
+          origin_.y + scale_ * (q.x * ux_.y + q.y * ux_.x)};
+}
+
 double min_scaled_jacobian(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   const Vec2 p[4] = {a, b, c, d};
   double worst = std::numeric_limits<double>::infinity();
