@@ -23,12 +23,10 @@ namespace {
 
 using Quad = std::array<std::uint32_t, 4>;
 
-/// Quads worse than this (smallest corner scaled Jacobian) get a cavity re-fill tried.
-constexpr double kRefillBelow = 0.7;
 /// A re-fill is kept when the worst quad of the cavity and the quads round it rises by this.
 constexpr double kRefillGain = 0.02;
-/// A pass tries the worst kRefillFirst + (the patch's quads / kRefillShare) quads below
-/// kRefillBelow, no more: the re-fills cost a millisecond or so each, most fail where the
+/// A pass tries the worst kRefillFirst + (the patch's quads / kRefillShare) quads below the
+/// threshold, no more: the re-fills cost a millisecond or so each, most fail where the
 /// worst quads are bound by the boundary, and the worst quads are what the re-fill is for.
 constexpr std::size_t kRefillFirst = 32;
 constexpr std::size_t kRefillShare = 50;
@@ -49,8 +47,8 @@ double grained(double j) { return std::round(j / kRefillGrain) * kRefillGrain; }
 
 class PatchRefill {
  public:
-  PatchRefill(PatchQuads& pq, int iterations)
-      : pq_(pq), iterations_(std::min(iterations, kRefillSweeps)) {
+  PatchRefill(PatchQuads& pq, int iterations, double below)
+      : pq_(pq), iterations_(std::min(iterations, kRefillSweeps)), below_(below) {
     alive_.assign(pq_.quads.size(), true);
     around_.resize(pq_.pos.size());
     changed_.assign(pq_.pos.size(), -1);
@@ -58,14 +56,14 @@ class PatchRefill {
       for (std::uint32_t v : pq_.quads[q]) around_[v].push_back(q);
   }
 
-  /// Tries a re-fill round every quad below kRefillBelow, worst first; after the first pass,
+  /// Tries a re-fill round every quad below `below_`, worst first; after the first pass,
   /// only round quads near a node that the pass before moved or made. Returns the count kept.
   std::size_t run(int pass) {
     std::vector<std::pair<double, std::uint32_t>> bad;
     for (std::uint32_t q = 0; q < pq_.quads.size(); ++q) {
       if (!alive_[q]) continue;
       const double j = jacobian(pq_.quads[q]);
-      if (j < kRefillBelow && (pass == 0 || near_change(q, pass - 1)))
+      if (j < below_ && (pass == 0 || near_change(q, pass - 1)))
         bad.emplace_back(grained(j), q);
     }
     std::sort(bad.begin(), bad.end());
@@ -73,7 +71,7 @@ class PatchRefill {
     if (bad.size() > limit) bad.resize(limit);
     std::size_t kept = 0;
     for (const auto& [j, q] : bad) {
-      if (!alive_[q] || jacobian(pq_.quads[q]) >= kRefillBelow) continue;
+      if (!alive_[q] || jacobian(pq_.quads[q]) >= below_) continue;
       // The quads across its edges first (the smallest change), then those at its nodes, then
       // those at the nodes of those.
       for (int kind = 0; kind < 3; ++kind)
@@ -289,7 +287,7 @@ class PatchRefill {
     // The old quads relaxed with the quads round the cavity: what the smoothing could do
     // without a re-fill. When that is good enough, or as good as the corners allow, no fill.
     const Local was = relaxed(face.cycle, cycle, old_inner, old_quads, ring, cf);
-    if (was.worst >= kRefillBelow || bound < was.worst + kRefillGain) return false;
+    if (was.worst >= below_ || bound < was.worst + kRefillGain) return false;
     FaceSide all;
     all.kind = FaceSide::Kind::Boundary;
     all.edges = static_cast<std::uint32_t>(cycle.size());
@@ -352,6 +350,7 @@ class PatchRefill {
 
   PatchQuads& pq_;
   int iterations_;
+  double below_;  ///< quads worse than this get a re-fill tried
   std::vector<bool> alive_;
   std::vector<std::vector<std::uint32_t>> around_;  ///< node -> alive quads at it
   std::vector<int> changed_;  ///< node -> the last pass that moved or made it (-1: none)
@@ -359,7 +358,7 @@ class PatchRefill {
 
 }  // namespace
 
-std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations) {
+std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations, double below) {
   const std::vector<bool> pinned = pinned_nodes(mesh);
   std::size_t kept = 0;
   std::vector<bool> drop(mesh.elements.size(), false);
@@ -368,7 +367,7 @@ std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations) {
     PatchQuads pq = patch_quads(part, mesh, p, pinned);
     if (pq.quads.empty()) continue;
     const std::uint32_t shell = mesh.elements[pq.elements.front()].shell;
-    PatchRefill refill(pq, iterations);
+    PatchRefill refill(pq, iterations, below);
     std::size_t k = 0;
     for (int pass = 0; pass < kRefillPasses; ++pass) {
       const std::size_t more = refill.run(pass);
