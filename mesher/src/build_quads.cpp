@@ -1147,7 +1147,8 @@ void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations) {
   if (iterations <= 0) return;
   // Nodes used by elements of several patches, or on an edge used once in a patch, stay.
   const std::vector<bool> pinned = pinned_nodes(mesh);
-  for (std::size_t p = 0; p < part.patches.size(); ++p) {
+  // A patch's sweeps move only its own nodes (pinned nodes stay), so patches run in parallel.
+  for_each_patch(part.patches.size(), [&](std::size_t p) {
     const Frame& frame = part.patches[p].frame;
     PatchQuads pq = patch_quads(part, mesh, p, pinned);
     const std::vector<Vec2> before = pq.pos;
@@ -1159,7 +1160,7 @@ void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations) {
                    kFinalEdgeFraction);
     for (std::size_t i = 0; i < pq.global.size(); ++i)
       if (pq.pos[i] != before[i]) mesh.nodes[pq.global[i]] = frame.to_3d(pq.pos[i]);
-  }
+  });
 }
 
 }  // namespace laytracks

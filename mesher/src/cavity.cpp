@@ -360,22 +360,35 @@ class PatchRefill {
 
 std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations, double below) {
   const std::vector<bool> pinned = pinned_nodes(mesh);
+  // Each patch's re-fill reads its own quads and the pinned nodes, which no re-fill moves, so
+  // the patches run in parallel; their results are merged in patch order.
+  struct Result {
+    PatchQuads pq;
+    std::vector<bool> alive;
+    std::size_t kept = 0;
+  };
+  std::vector<Result> results(part.patches.size());
+  for_each_patch(part.patches.size(), [&](std::size_t p) {
+    Result& r = results[p];
+    r.pq = patch_quads(part, mesh, p, pinned);
+    if (r.pq.quads.empty()) return;
+    PatchRefill refill(r.pq, iterations, below);
+    for (int pass = 0; pass < kRefillPasses; ++pass) {
+      const std::size_t more = refill.run(pass);
+      r.kept += more;
+      if (more == 0) break;
+    }
+    if (r.kept > 0) r.alive = refill.alive();
+  });
   std::size_t kept = 0;
   std::vector<bool> drop(mesh.elements.size(), false);
   std::vector<MeshElement> added;
   for (std::size_t p = 0; p < part.patches.size(); ++p) {
-    PatchQuads pq = patch_quads(part, mesh, p, pinned);
-    if (pq.quads.empty()) continue;
+    Result& r = results[p];
+    if (r.kept == 0) continue;
+    PatchQuads& pq = r.pq;
+    kept += r.kept;
     const std::uint32_t shell = mesh.elements[pq.elements.front()].shell;
-    PatchRefill refill(pq, iterations, below);
-    std::size_t k = 0;
-    for (int pass = 0; pass < kRefillPasses; ++pass) {
-      const std::size_t more = refill.run(pass);
-      k += more;
-      if (more == 0) break;
-    }
-    if (k == 0) continue;
-    kept += k;
     const Frame& frame = part.patches[p].frame;
     for (std::size_t i = 0; i < pq.global.size(); ++i) {
       if (pq.global[i] == kNew) {
@@ -385,7 +398,7 @@ std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations, do
         mesh.nodes[pq.global[i]] = frame.to_3d(pq.pos[i]);
       }
     }
-    const std::vector<bool>& alive = refill.alive();
+    const std::vector<bool>& alive = r.alive;
     for (std::size_t q = 0; q < pq.quads.size(); ++q) {
       if (q < pq.elements.size()) {
         if (!alive[q]) drop[pq.elements[q]] = true;

@@ -1,6 +1,10 @@
 #include "patch_quads.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
 
 namespace laytracks::mesher_detail {
 
@@ -64,6 +68,32 @@ PatchQuads patch_quads(const Part& part,
     pq.elements.push_back(static_cast<std::uint32_t>(i));
   }
   return pq;
+}
+
+void for_each_patch(std::size_t n, const std::function<void(std::size_t)>& fn) {
+  const std::size_t threads = std::min<std::size_t>(n, std::max(1u, std::thread::hardware_concurrency()));
+  if (threads <= 1) {
+    for (std::size_t p = 0; p < n; ++p) fn(p);
+    return;
+  }
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto work = [&] {
+    for (std::size_t p = next++; p < n; p = next++) {
+      try {
+        fn(p);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
 }
 
 }  // namespace laytracks::mesher_detail

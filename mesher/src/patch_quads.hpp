@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "laytracks/brep/part.hpp"
@@ -29,5 +30,11 @@ PatchQuads patch_quads(const Part& part,
                        const QuadMesh& mesh,
                        std::size_t p,
                        const std::vector<bool>& pinned);
+
+/// Runs fn(p) for every p in [0, n), on as many threads as the machine has (at most n; on the
+/// calling thread when that is one). For passes whose work on one patch reads and writes
+/// nothing another patch's work writes: the result is the same as in order. The first
+/// exception thrown is rethrown here after every thread has ended.
+void for_each_patch(std::size_t n, const std::function<void(std::size_t)>& fn);
 
 }  // namespace laytracks::mesher_detail
