@@ -1,10 +1,12 @@
-// Cavity re-fill (docs/mesher.md, "Cavity re-fill"): the last repair of the quad stage. A
-// face template sees one face; its worst quads are often where two faces meet badly, or at a
+// Cavity re-fill (docs/mesher.md, "Cavity re-fill"): after the edge flips, before the
+// smoothing (whose result, unlike the templates' nodes, differs between poses). A face
+// template sees one face; its worst quads are often where two faces meet badly, or at a
 // B-Rep vertex on a nearly straight boundary that only one quad touches (a 170-degree corner:
 // no relaxation can mend that, the node is fixed). Here the quads round such a quad, across
 // face borders, are taken out as one polygon (a cavity: its boundary has an even edge count,
 // as any union of quads has) and filled again by the face templates; the new quads are
-// relaxed with the quads round the cavity, and kept only when the worst of all of them rises.
+// relaxed with the quads round the cavity, and kept only when their worst beats that of the
+// old quads relaxed the same way.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -23,7 +25,8 @@ namespace {
 
 using Quad = std::array<std::uint32_t, 4>;
 
-/// A re-fill is kept when the worst quad of the cavity and the quads round it rises by this.
+/// A re-fill is kept when the worst of its quads (and of the ring's that moved), relaxed, beats
+/// the old quads' relaxed alike by this.
 constexpr double kRefillGain = 0.02;
 /// A pass tries the worst kRefillFirst + (the patch's quads / kRefillShare) quads below the
 /// threshold, no more: the re-fills cost a millisecond or so each, most fail where the
