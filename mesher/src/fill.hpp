@@ -41,6 +41,7 @@ enum class FillKind : std::uint8_t {
   Pairs,    ///< any simple polygon: triangulated, triangles paired or split into quads
   Strip,    ///< a long strip whose caps or rails differ: rows from both caps, a short remainder
   Ogrid,    ///< a round face: a rectangle of quads in the middle, rings of quads round it
+  Arms,     ///< a junction of three or more arms: rows from each arm's cap, the rest inside
 };
 const char* to_string(FillKind kind);
 

@@ -224,3 +224,43 @@ TEST_CASE("faces with corners get coarse quads split in four, not only kites", "
     CHECK(3 * (m.quads.size() - tapered) >= m.quads.size());
   }
 }
+
+TEST_CASE("a junction of three long narrow arms gets rows along each arm, not spanning quads",
+          "[fill][arms]") {
+  // A T of arms 2 wide and about 20 long, edges of 1/7 (the tray's rib junction at h = 0.1357:
+  // the split template's quads spanned it, 100 element sizes long, worst corner 0.001).
+  FaceInput f;
+  auto run = [&](FaceSide::Kind kind, std::vector<Vec2> corners) {
+    FaceSide side;
+    side.kind = kind;
+    side.first = static_cast<std::uint32_t>(f.cycle.size());
+    for (std::size_t c = 0; c + 1 < corners.size(); ++c) {
+      const Vec2 a = corners[c], b = corners[c + 1];
+      const int steps = static_cast<int>(std::lround(norm(b - a) * 7.0));
+      for (int k = 0; k < steps; ++k)
+        f.cycle.push_back(a + (static_cast<double>(k) / steps) * (b - a));
+      side.edges += static_cast<std::uint32_t>(steps);
+    }
+    f.sides.push_back(side);
+  };
+  using K = FaceSide::Kind;
+  run(K::Boundary, {{-20, 1}, {-20, -1}});
+  run(K::Rail, {{-20, -1}, {-1, -1}, {-1, -21}});
+  run(K::Boundary, {{-1, -21}, {1, -21}});
+  run(K::Rail, {{1, -21}, {1, -1}, {20, -1}});
+  run(K::Boundary, {{20, -1}, {20, 1}});
+  run(K::Rail, {{20, 1}, {-20, 1}});
+  REQUIRE(f.cycle.size() % 2 == 0);
+  REQUIRE(f.cycle.size() > 800);
+  const FaceMesh m = fill_face(f, "the T");
+  CHECK(std::string(to_string(m.kind)) == "arms");
+  check_fill(f, m);
+  CHECK(m.min_jacobian > 0.3);
+  const auto n = static_cast<std::uint32_t>(f.cycle.size());
+  auto pos = [&](std::uint32_t i) { return i < n ? f.cycle[i] : m.interior[i - n]; };
+  double longest = 0.0;
+  for (const auto& q : m.quads)
+    for (std::size_t k = 0; k < 4; ++k)
+      longest = std::max(longest, norm(pos(q[k]) - pos(q[(k + 1) % 4])));
+  CHECK(longest < 10.0 / 7.0);
+}
