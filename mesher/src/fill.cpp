@@ -165,6 +165,13 @@ struct Builder {
     if (twice >= 0.0) quad(a, b, c, d);
     else quad(a, d, c, b);
   }
+  /// Takes in the quads of a sub-face whose cycle node k is this face's node ids[k]: its
+  /// interior nodes are added, its quads mapped.
+  void embed(const FaceMesh& sub, const std::vector<std::uint32_t>& ids) {
+    std::vector<std::uint32_t> map(ids);
+    for (const Vec2& p : sub.interior) map.push_back(add(p));
+    for (const auto& q : sub.quads) quad(map[q[0]], map[q[1]], map[q[2]], map[q[3]]);
+  }
   FaceMesh finish() {
     out.min_jacobian = face_score(out.quads, [&](std::uint32_t i) { return pos(i); }, face);
     return std::move(out);
@@ -919,9 +926,7 @@ bool cut_down(Builder& m, const std::vector<std::uint32_t>& ids, int& budget) {
   piece.cycle = poly;
   for (const FaceMesh& g : corner_grids(piece)) {
     if (g.min_jacobian < kAcceptJacobian) continue;
-    std::vector<std::uint32_t> map(ids);
-    for (const Vec2& p : g.interior) map.push_back(m.add(p));
-    for (const auto& q : g.quads) m.quad(map[q[0]], map[q[1]], map[q[2]], map[q[3]]);
+    m.embed(g, ids);
     return true;
   }
   for (const Chord& c : best_chords(poly, kCutChoices)) {
@@ -1090,9 +1095,7 @@ std::optional<FaceMesh> fill_rows(const FaceInput& face, const Strip& st, int de
     if (!sub) continue;
     Builder m(face, FillKind::Rows);
     for (std::uint32_t k = 0; k < rows; ++k) m.quad(L(k), R(k), R(k + 1), L(k + 1));
-    std::vector<std::uint32_t> map(ids);
-    for (const Vec2& p : sub->interior) map.push_back(m.add(p));
-    for (const auto& q : sub->quads) m.quad(map[q[0]], map[q[1]], map[q[2]], map[q[3]]);
+    m.embed(*sub, ids);
     FaceMesh r = m.finish();
     if (!r.interior.empty() && r.min_jacobian < kAcceptJacobian) relax(r, face, 30);
     if (!best || r.min_jacobian > best->min_jacobian) best = std::move(r);
@@ -1174,9 +1177,7 @@ std::optional<FaceMesh> fill_strip(const FaceInput& face, const Strip& st, int d
   for (std::uint32_t k = r2; k < n2 - r1; ++k) push(st.rail2[k]);
   const std::optional<FaceMesh> sub = fill_any(rest, depth + 1);
   if (!sub) return std::nullopt;
-  std::vector<std::uint32_t> map(ids);
-  for (const Vec2& p : sub->interior) map.push_back(m.add(p));
-  for (const auto& q : sub->quads) m.quad(map[q[0]], map[q[1]], map[q[2]], map[q[3]]);
+  m.embed(*sub, ids);
   FaceMesh r = m.finish();
   if (r.min_jacobian < kAcceptJacobian) relax(r, face, 30);
   return r;
@@ -1314,9 +1315,7 @@ std::optional<FaceMesh> fill_arms(const FaceInput& face, int depth) {
   rest.sides.push_back(all);
   const std::optional<FaceMesh> sub = fill_any(rest, depth + 1);
   if (!sub) return std::nullopt;
-  std::vector<std::uint32_t> map(ids);
-  for (const Vec2& p : sub->interior) map.push_back(m.add(p));
-  for (const auto& q : sub->quads) m.quad(map[q[0]], map[q[1]], map[q[2]], map[q[3]]);
+  m.embed(*sub, ids);
   FaceMesh r = m.finish();
   if (!r.interior.empty() && r.min_jacobian < kAcceptJacobian) relax(r, face, 30);
   return r;
