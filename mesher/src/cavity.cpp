@@ -298,7 +298,6 @@ class PatchRefill {
     const std::optional<FaceMesh> filled = fill_cavity(face);
     if (!filled) return false;
     const FaceMesh& fm = *filled;
-    if (std::getenv("SAMECOUNT") && fm.quads.size() != cavity.size()) return false;
 
     // The old quads and the new, each relaxed with the quads round the cavity: the new are kept
     // when their worst (and that of the quads round them that moved) beats the old's by
