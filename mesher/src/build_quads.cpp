@@ -58,16 +58,11 @@ constexpr double kTinyPiece = 0.01;
 /// than kDiskGap (a regular hexagon's six rails stay: its wedges are good quads).
 constexpr std::size_t kDiskRails = 8;
 constexpr double kDiskGap = 60.0 * kPi / 180.0;
-/// The final smoothing's untangler works on every node with a quad below this (the
-/// templates' relaxation stops at kAcceptJacobian, the bound of their choice).
-constexpr double kFinalUntangleTarget = 0.6;
 /// flip_edges: pairs of quads whose worse is below kFlipBelow are re-split when another
 /// diagonal of their hexagon beats it by kFlipGain; at most kFlipPasses passes.
 constexpr double kFlipBelow = 0.3;
 constexpr double kFlipGain = 0.05;
 constexpr int kFlipPasses = 4;
-/// ... and keeps a node's edges above this x their mean length before the sweeps.
-constexpr double kFinalEdgeFraction = 0.3;
 /// Two rails from one boundary node closer in angle than this are not both kept (10 degrees:
 /// the quad at their tip would have a scaled Jacobian below sin 10 = 0.17).
 constexpr double kMinFanAngle = 10.0 * kPi / 180.0;
@@ -1147,17 +1142,13 @@ void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations) {
   if (iterations <= 0) return;
   // Nodes used by elements of several patches, or on an edge used once in a patch, stay.
   const std::vector<bool> pinned = pinned_nodes(mesh);
+  const std::vector<std::vector<std::uint32_t>> by_patch = elements_by_patch(part, mesh);
   // A patch's sweeps move only its own nodes (pinned nodes stay), so patches run in parallel.
   for_each_patch(part.patches.size(), [&](std::size_t p) {
     const Frame& frame = part.patches[p].frame;
-    PatchQuads pq = patch_quads(part, mesh, p, pinned);
+    PatchQuads pq = patch_quads(part, mesh, p, by_patch[p], pinned);
     const std::vector<Vec2> before = pq.pos;
-    smooth_nodes(pq.pos, pq.fixed, pq.quads, iterations);
-    // Then the corners' angles, against the edge lengths the Laplacian sweeps left.
-    optimize_nodes(pq.pos, pq.fixed, pq.quads, iterations);
-    // Then each node still in a quad below kAcceptJacobian moves to raise its worst quad.
-    untangle_nodes(pq.pos, pq.fixed, pq.quads, iterations, kFinalUntangleTarget,
-                   kFinalEdgeFraction);
+    final_sweeps(pq.pos, pq.fixed, pq.quads, iterations);
     for (std::size_t i = 0; i < pq.global.size(); ++i)
       if (pq.pos[i] != before[i]) mesh.nodes[pq.global[i]] = frame.to_3d(pq.pos[i]);
   });

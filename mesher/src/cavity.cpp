@@ -37,16 +37,10 @@ constexpr std::size_t kRefillShare = 50;
 constexpr int kRefillPasses = 2;
 /// Cavities of more boundary nodes than this are not tried (the templates are O(n^3)).
 constexpr std::size_t kMaxCavityNodes = 48;
-/// The relaxation after a re-fill: as the final smoothing (docs/mesher.md, "Smoothing"), with
-/// at most kRefillSweeps sweeps of each kind (the cavity is small).
+/// A cavity is relaxed by the final smoothing's sweeps (final_sweeps), at most kRefillSweeps
+/// of each kind (the cavity is small).
 constexpr int kRefillSweeps = 4;
-constexpr double kRefillUntangleTarget = 0.6;
-constexpr double kRefillEdgeFraction = 0.3;
 constexpr std::uint32_t kNew = 0xffffffffu;
-
-/// Scaled Jacobians compared in whole steps of this, so that every pose decides alike.
-constexpr double kRefillGrain = 1e-9;
-double grained(double j) { return std::round(j / kRefillGrain) * kRefillGrain; }
 
 class PatchRefill {
  public:
@@ -66,8 +60,7 @@ class PatchRefill {
     for (std::uint32_t q = 0; q < pq_.quads.size(); ++q) {
       if (!alive_[q]) continue;
       const double j = jacobian(pq_.quads[q]);
-      if (j < below_ && (pass == 0 || near_change(q, pass - 1)))
-        bad.emplace_back(grained(j), q);
+      if (j < below_ && (pass == 0 || near_change(q, pass - 1))) bad.emplace_back(settled(j), q);
     }
     std::sort(bad.begin(), bad.end());
     const std::size_t limit = kRefillFirst + pq_.quads.size() / kRefillShare;
@@ -108,9 +101,7 @@ class PatchRefill {
     const std::size_t n = poly.size();
     for (std::size_t i = 0; i < n; ++i) {
       if (!pq_.fixed[ids[i]]) continue;
-      const Vec2 out = poly[(i + 1) % n] - poly[i], back = poly[(i + n - 1) % n] - poly[i];
-      double a = std::atan2(cross(out, back), dot(out, back));
-      if (a < 0.0) a += 2.0 * kPi;
+      const double a = interior_angle(poly, i);
       double best = 0.0;
       for (int k = 1; k <= 8; ++k)
         if (a / k < kPi) best = std::max(best, std::sin(a / k));
@@ -198,9 +189,7 @@ class PatchRefill {
       l.quads.push_back(lq);
     }
     const std::vector<Vec2> start = l.pos;
-    smooth_nodes(l.pos, fixed, l.quads, iterations_);
-    optimize_nodes(l.pos, fixed, l.quads, iterations_);
-    untangle_nodes(l.pos, fixed, l.quads, iterations_, kRefillUntangleTarget, kRefillEdgeFraction);
+    final_sweeps(l.pos, fixed, l.quads, iterations_);
     l.worst = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < l.quads.size(); ++k) {
       const Quad& q = l.quads[k];
@@ -310,9 +299,9 @@ class PatchRefill {
           stderr,
           "cavity: %zu quads, %zu nodes round, %s (%zu quads, %.6f), worst %.3f -> %.3f%s\n",
           cavity.size(), n, to_string(fm.kind), fm.quads.size(), fm.min_jacobian, was.worst,
-          now.worst, grained(now.worst) >= grained(was.worst) + kRefillGain ? " kept" : "");
+          now.worst, settled(now.worst) >= settled(was.worst) + kRefillGain ? " kept" : "");
     }
-    if (!(grained(now.worst) >= grained(was.worst) + kRefillGain)) return false;
+    if (!(settled(now.worst) >= settled(was.worst) + kRefillGain)) return false;
     const std::vector<Vec2>& pos = now.pos;
     std::vector<std::uint32_t>& ids = now.ids;
     const std::size_t fresh = fm.quads.size();
@@ -362,6 +351,7 @@ class PatchRefill {
 
 std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations, double below) {
   const std::vector<bool> pinned = pinned_nodes(mesh);
+  const std::vector<std::vector<std::uint32_t>> by_patch = elements_by_patch(part, mesh);
   // Each patch's re-fill reads its own quads and the pinned nodes, which no re-fill moves, so
   // the patches run in parallel; their results are merged in patch order.
   struct Result {
@@ -372,7 +362,7 @@ std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations, do
   std::vector<Result> results(part.patches.size());
   for_each_patch(part.patches.size(), [&](std::size_t p) {
     Result& r = results[p];
-    r.pq = patch_quads(part, mesh, p, pinned);
+    r.pq = patch_quads(part, mesh, p, by_patch[p], pinned);
     if (r.pq.quads.empty()) return;
     PatchRefill refill(r.pq, iterations, below);
     for (int pass = 0; pass < kRefillPasses; ++pass) {

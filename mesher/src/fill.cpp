@@ -42,24 +42,13 @@ const char* to_string(FillKind kind) {
   return "?";
 }
 
-LocalFrame::LocalFrame(const std::vector<Vec2>& pos, const std::vector<std::uint32_t>& ids) {
+LocalFrame::LocalFrame(const std::vector<Vec2>& pos, const std::vector<std::uint32_t>& ids)
+    : origin_(pos[ids[0]]) {
   double length = 0.0;
   for (std::size_t i = 0; i < ids.size(); ++i)
     length += norm(pos[ids[(i + 1) % ids.size()]] - pos[ids[i]]);
-  init(pos[ids[0]], pos[ids[1]], length / static_cast<double>(ids.size()));
-}
-
-LocalFrame::LocalFrame(const std::vector<Vec2>& cycle) {
-  double length = 0.0;
-  for (std::size_t i = 0; i < cycle.size(); ++i)
-    length += norm(cycle[(i + 1) % cycle.size()] - cycle[i]);
-  init(cycle[0], cycle[1], length / static_cast<double>(cycle.size()));
-}
-
-void LocalFrame::init(Vec2 first, Vec2 second, double mean_edge) {
-  origin_ = first;
-  scale_ = mean_edge;
-  const Vec2 d = second - first;
+  scale_ = length / static_cast<double>(ids.size());
+  const Vec2 d = pos[ids[1]] - origin_;
   const double l = norm(d);
   ux_ = l > 0.0 ? Vec2{d.x / l, d.y / l} : Vec2{1.0, 0.0};
   if (!(scale_ > 0.0)) scale_ = 1.0;
@@ -717,7 +706,8 @@ std::optional<FaceMesh> fill_fan_split(const FaceInput& face, std::uint32_t offs
   return r;
 }
 
-/// Interior angle of the counter-clockwise polygon `poly` at node i (radians, in (0, 2 pi)).
+}  // namespace
+
 double interior_angle(const std::vector<Vec2>& poly, std::size_t i) {
   const std::size_t n = poly.size();
   const Vec2 out = poly[(i + 1) % n] - poly[i], back = poly[(i + n - 1) % n] - poly[i];
@@ -725,6 +715,8 @@ double interior_angle(const std::vector<Vec2>& poly, std::size_t i) {
   if (a <= 0.0) a += 2.0 * kPi;
   return a;
 }
+
+namespace {
 
 /// Counter-clockwise angle from `from` to `to`, in [0, 2 pi).
 double ccw_angle(Vec2 from, Vec2 to) {
@@ -1427,7 +1419,6 @@ double mean_shape(const FaceMesh& m, const FaceInput& face) {
 /// mean_shape compared in whole steps of this (a later template must be better by one).
 constexpr double kShapeStep = 0.01;
 
-/// Every template in turn; the first good one, else the best.
 /// The unstructured templates (split and fan split from either parity, cut; fan split only
 /// when `fans`); of those whose worst corner is acceptable, the one whose quads are best on
 /// average (mean_shape, in whole kShapeStep steps, the first on ties). `consider` sees every
@@ -1468,6 +1459,7 @@ struct BestFill {
   }
 };
 
+/// Every template in turn; the first good one, else the best.
 std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
   const std::size_t n = face.cycle.size();
   BestFill b;
@@ -1552,19 +1544,20 @@ std::optional<FaceMesh> fill_cavity(const FaceInput& face) {
   return std::nullopt;
 }
 
-namespace {
-
-/// The relaxations' accept / reject tests compare scaled Jacobians rounded to this: a quad's
-/// value that is exact by construction (a flat corner at a midpoint placed on a diagonal: 0,
-/// or a right angle: 1) comes out as +-1e-16 or 1 - 1e-16 depending on the pose's last bits,
-/// and `after >= before` then took a move in one pose and refused it in another (a pairs face of
-/// a generated part relaxed to a worst corner of 0.154 in one pose and 0.142 in the other).
-/// Far above rounding at any scale, far below any difference the sweeps care about.
-/// A move must still keep a quad that had positive corners positive (`keeps_sign`): the grain
-/// alone would let +4e-10 become -4e-10.
-constexpr double kJacobianGrain = 1e-9;
-
 double settled(double jacobian) { return std::round(jacobian / kJacobianGrain) * kJacobianGrain; }
+
+void final_sweeps(std::vector<Vec2>& pos,
+                  const std::vector<bool>& fixed,
+                  const std::vector<std::array<std::uint32_t, 4>>& quads,
+                  int iterations) {
+  smooth_nodes(pos, fixed, quads, iterations);
+  // Then the corners' angles, against the edge lengths the Laplacian sweeps left.
+  optimize_nodes(pos, fixed, quads, iterations);
+  // Then each node still in a quad below kFinalUntangleTarget moves to raise its worst quad.
+  untangle_nodes(pos, fixed, quads, iterations, kFinalUntangleTarget, kFinalEdgeFraction);
+}
+
+namespace {
 
 bool keeps_sign(double before, double after) { return after > 0.0 || !(before > 0.0); }
 

@@ -65,15 +65,12 @@ class LocalFrame {
  public:
   /// The frame of the closed polygon of `pos[ids[i]]` (at least two distinct points).
   LocalFrame(const std::vector<Vec2>& pos, const std::vector<std::uint32_t>& ids);
-  /// The frame of the closed polygon `cycle`.
-  explicit LocalFrame(const std::vector<Vec2>& cycle);
   /// p in this frame, rounded to the grid.
   Vec2 to_local(Vec2 p) const;
   /// Back to the patch frame.
   Vec2 to_patch(Vec2 q) const;
 
  private:
-  void init(Vec2 first, Vec2 second, double mean_edge);
   Vec2 origin_;
   Vec2 ux_;
   double scale_ = 1.0;
@@ -136,6 +133,36 @@ void untangle_nodes(std::vector<Vec2>& pos,
                     int iterations,
                     double target = kAcceptJacobian,
                     double min_edge_fraction = kMinEdgeFraction);
+
+/// The relaxations' accept / reject tests (and the cavity re-fill's) compare scaled Jacobians
+/// rounded to this: a quad's value that is exact by construction (a flat corner at a midpoint
+/// placed on a diagonal: 0, or a right angle: 1) comes out as +-1e-16 or 1 - 1e-16 depending on
+/// the pose's last bits, and `after >= before` then took a move in one pose and refused it in
+/// another (a pairs face of a generated part relaxed to a worst corner of 0.154 in one pose and
+/// 0.142 in the other). Far above rounding at any scale, far below any difference the sweeps
+/// care about. A move must still keep a quad that had positive corners positive (`keeps_sign`):
+/// the grain alone would let +4e-10 become -4e-10.
+constexpr double kJacobianGrain = 1e-9;
+
+/// `jacobian` rounded to kJacobianGrain.
+double settled(double jacobian);
+
+/// Interior angle of the counter-clockwise polygon `poly` at node i (radians, in (0, 2 pi)).
+double interior_angle(const std::vector<Vec2>& poly, std::size_t i);
+
+/// The final smoothing's untangler works on every node with a quad below this (the
+/// templates' relaxation stops at kAcceptJacobian, the bound of their choice) ...
+constexpr double kFinalUntangleTarget = 0.6;
+/// ... and keeps a node's edges above this x their mean length before the sweeps.
+constexpr double kFinalEdgeFraction = 0.3;
+
+/// The sweeps of the final smoothing (docs/mesher.md, "Smoothing"): `iterations` Laplacian
+/// sweeps, then as many of angle optimisation and of untangling towards
+/// kFinalUntangleTarget. No quad is ever inverted; `fixed` nodes stay.
+void final_sweeps(std::vector<Vec2>& pos,
+                  const std::vector<bool>& fixed,
+                  const std::vector<std::array<std::uint32_t, 4>>& quads,
+                  int iterations);
 
 /// A node whose Newton step promises less decrease of its objective than this stays.
 constexpr double kOptimizeTolerance = 1e-4;

@@ -43,16 +43,24 @@ std::vector<bool> pinned_nodes(const QuadMesh& mesh) {
   return pinned;
 }
 
+std::vector<std::vector<std::uint32_t>> elements_by_patch(const Part& part, const QuadMesh& mesh) {
+  std::vector<std::vector<std::uint32_t>> by(part.patches.size());
+  for (std::size_t i = 0; i < mesh.elements.size(); ++i)
+    by[mesh.elements[i].patch.index()].push_back(static_cast<std::uint32_t>(i));
+  return by;
+}
+
 PatchQuads patch_quads(const Part& part,
                        const QuadMesh& mesh,
                        std::size_t p,
+                       const std::vector<std::uint32_t>& elements,
                        const std::vector<bool>& pinned) {
   const Frame& frame = part.patches[p].frame;
   PatchQuads pq;
   std::vector<std::uint32_t> local(mesh.nodes.size(), kUnset);
-  for (std::size_t i = 0; i < mesh.elements.size(); ++i) {
+  for (const std::uint32_t i : elements) {
     const MeshElement& e = mesh.elements[i];
-    if (e.patch.index() != p || !e.is_quad()) continue;
+    if (!e.is_quad()) continue;
     std::array<std::uint32_t, 4> q{};
     for (std::size_t k = 0; k < 4; ++k) {
       const std::uint32_t v = e.nodes[k];
@@ -65,13 +73,14 @@ PatchQuads patch_quads(const Part& part,
       q[k] = local[v];
     }
     pq.quads.push_back(q);
-    pq.elements.push_back(static_cast<std::uint32_t>(i));
+    pq.elements.push_back(i);
   }
   return pq;
 }
 
 void for_each_patch(std::size_t n, const std::function<void(std::size_t)>& fn) {
-  const std::size_t threads = std::min<std::size_t>(n, std::max(1u, std::thread::hardware_concurrency()));
+  const std::size_t threads =
+      std::min<std::size_t>(n, std::max(1u, std::thread::hardware_concurrency()));
   if (threads <= 1) {
     for (std::size_t p = 0; p < n; ++p) fn(p);
     return;

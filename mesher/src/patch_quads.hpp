@@ -25,10 +25,16 @@ struct PatchQuads {
   std::vector<std::uint32_t> elements;              ///< quad -> mesh element index
 };
 
-/// Patch p's quads; `pinned` is pinned_nodes(mesh). Nodes are numbered in order of first use.
+/// The element indices of each patch, in mesh order (one pass over the mesh, instead of one
+/// per patch).
+std::vector<std::vector<std::uint32_t>> elements_by_patch(const Part& part, const QuadMesh& mesh);
+
+/// Patch p's quads, given its `elements` (elements_by_patch) and `pinned` (pinned_nodes).
+/// Nodes are numbered in order of first use.
 PatchQuads patch_quads(const Part& part,
                        const QuadMesh& mesh,
                        std::size_t p,
+                       const std::vector<std::uint32_t>& elements,
                        const std::vector<bool>& pinned);
 
 /// Runs fn(p) for every p in [0, n), on as many threads as the machine has (at most n; on the
