@@ -959,6 +959,13 @@ class QuadBuilder {
                              : lerp(g.nodes[c.a].p, g.nodes[c.b].p, c.forward ? s : 1.0 - s);
       }
     }
+    // Each face's cycle: its positions and sides (FaceInput), and its nodes' mesh ids.
+    struct Pending {
+      FaceInput in;
+      std::vector<std::uint32_t> mesh_ids;
+      std::string where;
+    };
+    std::vector<Pending> pending(g.faces.size());
     for (std::size_t f = 0; f < g.faces.size(); ++f) {
       auto cycle = g.faces[f];
       // Start where a side starts, so that no side wraps round the cycle's start.
@@ -972,8 +979,8 @@ class QuadBuilder {
           break;
         }
       }
-      FaceInput in;
-      std::vector<std::uint32_t> mesh_ids;
+      FaceInput& in = pending[f].in;
+      std::vector<std::uint32_t>& mesh_ids = pending[f].mesh_ids;
       auto emit = [&](std::uint32_t id) {
         mesh_ids.push_back(id);
         in.cycle.push_back(pos2.at(id));
@@ -1013,10 +1020,17 @@ class QuadBuilder {
       const Vec3 x = patch.frame.to_3d(in.cycle.front());
       where << "face " << f << " of " << part_.patch_label(pid) << " (near " << x.x << ", " << x.y
             << ", " << x.z << ")";
-      const FaceMesh fm = fill_face(in, where.str());
+      pending[f].where = where.str();
+    }
+    // The faces are filled on all cores (a face's fill reads only its own input); their nodes
+    // and quads are added in face order, so the mesh is the same as filled one by one.
+    std::vector<FaceMesh> filled(pending.size());
+    parallel_for(pending.size(), [&](std::size_t f) { filled[f] = fill_face(pending[f].in, pending[f].where); });
+    for (std::size_t f = 0; f < pending.size(); ++f) {
+      const FaceMesh& fm = filled[f];
       ++result_.stats.faces;
       ++result_.stats.by_template[static_cast<std::size_t>(fm.kind)];
-      std::vector<std::uint32_t>& ids = mesh_ids;
+      std::vector<std::uint32_t>& ids = pending[f].mesh_ids;
       for (const Vec2& p : fm.interior) ids.push_back(add_node(patch.frame.to_3d(p)));
       for (const auto& q : fm.quads) {
         MeshElement el;
@@ -1144,7 +1158,7 @@ void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations) {
   const std::vector<bool> pinned = pinned_nodes(mesh);
   const std::vector<std::vector<std::uint32_t>> by_patch = elements_by_patch(part, mesh);
   // A patch's sweeps move only its own nodes (pinned nodes stay), so patches run in parallel.
-  for_each_patch(part.patches.size(), [&](std::size_t p) {
+  parallel_for(part.patches.size(), [&](std::size_t p) {
     const Frame& frame = part.patches[p].frame;
     PatchQuads pq = patch_quads(part, mesh, p, by_patch[p], pinned);
     const std::vector<Vec2> before = pq.pos;

@@ -12,6 +12,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <optional>
+#include <string>
 
 #include "fill.hpp"
 #include "laytracks/mesher/build_quads.hpp"
@@ -40,15 +42,19 @@ constexpr std::size_t kMaxCavityNodes = 48;
 /// A cavity is relaxed by the final smoothing's sweeps (final_sweeps), at most kRefillSweeps
 /// of each kind (the cavity is small).
 constexpr int kRefillSweeps = 4;
+/// Attempts evaluated in parallel at a time (when the patch's re-fill runs alone).
+constexpr std::size_t kRefillBatch = 8;
 constexpr std::uint32_t kNew = 0xffffffffu;
 
 class PatchRefill {
  public:
-  PatchRefill(PatchQuads& pq, int iterations, double below)
-      : pq_(pq), iterations_(std::min(iterations, kRefillSweeps)), below_(below) {
+  /// `parallel`: evaluate attempts on all cores (for a patch whose re-fill runs alone).
+  PatchRefill(PatchQuads& pq, int iterations, double below, bool parallel)
+      : pq_(pq), iterations_(std::min(iterations, kRefillSweeps)), below_(below), parallel_(parallel) {
     alive_.assign(pq_.quads.size(), true);
     around_.resize(pq_.pos.size());
     changed_.assign(pq_.pos.size(), -1);
+    written_.assign(pq_.pos.size(), 0);
     for (std::uint32_t q = 0; q < pq_.quads.size(); ++q)
       for (std::uint32_t v : pq_.quads[q]) around_[v].push_back(q);
   }
@@ -65,16 +71,31 @@ class PatchRefill {
     std::sort(bad.begin(), bad.end());
     const std::size_t limit = kRefillFirst + pq_.quads.size() / kRefillShare;
     if (bad.size() > limit) bad.resize(limit);
+    // Tried in order, worst first, in batches evaluated in parallel against the mesh as it was
+    // before the batch; then kept in order. An attempt that read a node which an earlier
+    // re-fill of its batch moved, made or re-linked is evaluated again: every decision is the
+    // one the attempts made one by one would make (the same mesh, to the last bit).
     std::size_t kept = 0;
-    for (const auto& [j, q] : bad) {
-      if (!alive_[q] || jacobian(pq_.quads[q]) >= below_) continue;
-      // The quads across its edges first (the smallest change), then those at its nodes, then
-      // those at the nodes of those.
-      for (int kind = 0; kind < 3; ++kind)
-        if (try_cavity(cavity_of(q, kind), pass)) {
-          ++kept;
-          break;
-        }
+    const std::size_t batch = parallel_ ? kRefillBatch : 1;
+    for (std::size_t first = 0; first < bad.size(); first += batch) {
+      const std::size_t count = std::min(batch, bad.size() - first);
+      std::vector<Attempt> tries(count);
+      const auto evaluate = [&](std::size_t i) { tries[i] = attempt(bad[first + i].second); };
+      if (count > 1) parallel_for(count, evaluate);
+      else evaluate(0);
+      ++batch_id_;
+      bool wrote = false;
+      for (std::size_t i = 0; i < count; ++i) {
+        Attempt& t = tries[i];
+        if (wrote && std::any_of(t.reads.begin(), t.reads.end(),
+                                 [&](std::uint32_t v) { return written_[v] == batch_id_; }))
+          t = attempt(bad[first + i].second);
+        if (!t.log.empty()) std::fputs(t.log.c_str(), stderr);
+        if (!t.plan) continue;
+        commit(*t.plan, pass);
+        wrote = true;
+        ++kept;
+      }
     }
     return kept;
   }
@@ -202,8 +223,51 @@ class PatchRefill {
     return l;
   }
 
-  /// Re-fills the cavity when that raises the worst quad of it and of the quads round it.
-  bool try_cavity(const std::vector<std::uint32_t>& cavity, int pass) {
+  /// A re-fill decided on: what commit() needs.
+  struct Plan {
+    std::vector<std::uint32_t> cavity, cycle;
+    std::vector<Vec2> cycle_local;  ///< the cycle's positions in cf before the re-fill
+    LocalFrame cf;
+    std::size_t interior = 0;       ///< the new inner nodes (local ids n.. of `now`)
+    std::size_t fresh = 0;          ///< the new quads (the first of `now.quads`)
+    Local now;                      ///< the new quads relaxed with the ring
+  };
+
+  /// One attempt round quad q, made on the mesh as it is (nothing changed): the first cavity
+  /// kind whose re-fill is worth keeping, if any.
+  struct Attempt {
+    std::optional<Plan> plan;
+    std::vector<std::uint32_t> reads;  ///< the nodes whose positions or quads it may have read
+    std::string log;                   ///< LAYTRACKS_DEBUG_CAVITY lines
+  };
+  Attempt attempt(std::uint32_t q) const {
+    Attempt t;
+    t.reads = reach(q);
+    if (!alive_[q] || jacobian(pq_.quads[q]) >= below_) return t;
+    // The quads across its edges first (the smallest change), then those at its nodes, then
+    // those at the nodes of those.
+    for (int kind = 0; kind < 3 && !t.plan; ++kind) t.plan = plan_cavity(cavity_of(q, kind), t.log);
+    return t;
+  }
+
+  /// What an attempt round q reads: the nodes of the quads at the nodes of the quads at the
+  /// nodes of... q, three rings out (its largest cavity is two rings; the quads round a
+  /// cavity, whose nodes the relaxation reads, one more).
+  std::vector<std::uint32_t> reach(std::uint32_t q) const {
+    std::vector<std::uint32_t> nodes(pq_.quads[q].begin(), pq_.quads[q].end());
+    for (int ring = 0; ring < 3; ++ring) {
+      const std::size_t end = nodes.size();
+      for (std::size_t i = 0; i < end; ++i)
+        for (std::uint32_t o : around_[nodes[i]])
+          nodes.insert(nodes.end(), pq_.quads[o].begin(), pq_.quads[o].end());
+      std::sort(nodes.begin(), nodes.end());
+      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    }
+    return nodes;
+  }
+
+  /// A re-fill of the cavity, when it raises the worst quad of it and of the quads round it.
+  std::optional<Plan> plan_cavity(const std::vector<std::uint32_t>& cavity, std::string& log) const {
     // Its boundary: the directed edges whose reverse no cavity quad has, one cycle.
     std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
     for (std::uint32_t c : cavity)
@@ -214,20 +278,20 @@ class PatchRefill {
     for (const auto& [a, b] : edges)
       if (!std::binary_search(edges.begin(), edges.end(), std::make_pair(b, a)))
         border.emplace_back(a, b);
-    if (border.size() < 4 || border.size() > kMaxCavityNodes) return false;
+    if (border.size() < 4 || border.size() > kMaxCavityNodes) return std::nullopt;
     // A simple cycle: one edge out of every border node, all of them on one loop.
     for (std::size_t i = 1; i < border.size(); ++i)
-      if (border[i].first == border[i - 1].first) return false;
+      if (border[i].first == border[i - 1].first) return std::nullopt;
     auto next = [&](std::uint32_t a) {
       const auto it = std::lower_bound(border.begin(), border.end(), std::make_pair(a, 0u));
       return it != border.end() && it->first == a ? it->second : kNew;
     };
     std::vector<std::uint32_t> cycle{border.front().first};
     for (std::uint32_t v = next(cycle.front()); v != cycle.front(); v = next(v)) {
-      if (v == kNew || cycle.size() >= border.size()) return false;
+      if (v == kNew || cycle.size() >= border.size()) return std::nullopt;
       cycle.push_back(v);
     }
-    if (cycle.size() != border.size()) return false;
+    if (cycle.size() != border.size()) return std::nullopt;
     // Its inner nodes go; none of them may be pinned.
     std::vector<std::uint32_t> on_cycle = cycle;
     std::sort(on_cycle.begin(), on_cycle.end());
@@ -238,7 +302,7 @@ class PatchRefill {
     std::sort(inner.begin(), inner.end());
     inner.erase(std::unique(inner.begin(), inner.end()), inner.end());
     for (std::uint32_t v : inner)
-      if (pq_.fixed[v]) return false;
+      if (pq_.fixed[v]) return std::nullopt;
     // The quads round it: alive, not in it, at a node of its boundary.
     std::vector<std::uint32_t> ring;
     for (std::uint32_t v : cycle)
@@ -275,17 +339,17 @@ class PatchRefill {
     }
     // No quad mesh of the cavity beats what its pinned corners allow: skip hopeless ones.
     const double bound = corner_bound(face.cycle, cycle);
-    if (bound < before + kRefillGain) return false;
+    if (bound < before + kRefillGain) return std::nullopt;
     // The old quads relaxed with the quads round the cavity: what the smoothing could do
     // without a re-fill. When that is good enough, or as good as the corners allow, no fill.
     const Local was = relaxed(face.cycle, cycle, old_inner, old_quads, ring, cf);
-    if (was.worst >= below_ || bound < was.worst + kRefillGain) return false;
+    if (was.worst >= below_ || bound < was.worst + kRefillGain) return std::nullopt;
     FaceSide all;
     all.kind = FaceSide::Kind::Boundary;
     all.edges = static_cast<std::uint32_t>(cycle.size());
     face.sides.push_back(all);
     const std::optional<FaceMesh> filled = fill_cavity(face);
-    if (!filled) return false;
+    if (!filled) return std::nullopt;
     const FaceMesh& fm = *filled;
 
     // The old quads and the new, each relaxed with the quads round the cavity: the new are kept
@@ -294,57 +358,66 @@ class PatchRefill {
     // would have done.
     Local now = relaxed(face.cycle, cycle, fm.interior, fm.quads, ring, cf);
     static const bool debug = std::getenv("LAYTRACKS_DEBUG_CAVITY") != nullptr;
+    const bool keep = settled(now.worst) >= settled(was.worst) + kRefillGain;
     if (debug) {
-      std::fprintf(
-          stderr,
-          "cavity: %zu quads, %zu nodes round, %s (%zu quads, %.6f), worst %.3f -> %.3f%s\n",
-          cavity.size(), n, to_string(fm.kind), fm.quads.size(), fm.min_jacobian, was.worst,
-          now.worst, settled(now.worst) >= settled(was.worst) + kRefillGain ? " kept" : "");
+      char line[200];
+      std::snprintf(line, sizeof line,
+                    "cavity: %zu quads, %zu nodes round, %s (%zu quads, %.6f), worst %.3f -> %.3f%s\n",
+                    cavity.size(), n, to_string(fm.kind), fm.quads.size(), fm.min_jacobian,
+                    was.worst, now.worst, keep ? " kept" : "");
+      log += line;
     }
-    if (!(settled(now.worst) >= settled(was.worst) + kRefillGain)) return false;
-    const std::vector<Vec2>& pos = now.pos;
-    std::vector<std::uint32_t>& ids = now.ids;
-    const std::size_t fresh = fm.quads.size();
-    const std::vector<Quad>& quads = now.quads;
+    if (!keep) return std::nullopt;
+    return Plan{cavity, cycle, face.cycle, cf, fm.interior.size(), fm.quads.size(), std::move(now)};
+  }
 
-    // Kept: the cavity's quads go, the new ones and their inner nodes come.
-    for (std::uint32_t c : cavity) {
+  /// Kept: the cavity's quads go, the new ones and their inner nodes come. Marks the nodes it
+  /// changes (written_) for the attempts of the batch after it.
+  void commit(Plan& plan, int pass) {
+    const std::size_t n = plan.cycle.size();
+    const std::vector<Vec2>& pos = plan.now.pos;
+    std::vector<std::uint32_t>& ids = plan.now.ids;
+    for (std::uint32_t c : plan.cavity) {
       alive_[c] = false;
       for (std::uint32_t v : pq_.quads[c]) {
+        written_[v] = batch_id_;
         auto& at = around_[v];
         at.erase(std::remove(at.begin(), at.end(), c), at.end());
       }
     }
     for (std::size_t i = 0; i < n; ++i) {
-      if (pos[i] == face.cycle[i]) continue;
-      changed_[cycle[i]] = pass;
-      pq_.pos[cycle[i]] = cf.to_patch(pos[i]);
+      if (pos[i] == plan.cycle_local[i]) continue;
+      changed_[plan.cycle[i]] = pass;
+      pq_.pos[plan.cycle[i]] = plan.cf.to_patch(pos[i]);
     }
-    for (std::size_t i = n; i < n + fm.interior.size(); ++i) {
+    for (std::size_t i = n; i < n + plan.interior; ++i) {
       ids[i] = static_cast<std::uint32_t>(pq_.pos.size());
-      pq_.pos.push_back(cf.to_patch(pos[i]));
+      pq_.pos.push_back(plan.cf.to_patch(pos[i]));
       pq_.fixed.push_back(false);
       pq_.global.push_back(kNew);
       around_.emplace_back();
       changed_.push_back(pass);
+      written_.push_back(batch_id_);
     }
-    for (std::size_t k = 0; k < fresh; ++k) {
+    for (std::size_t k = 0; k < plan.fresh; ++k) {
       Quad q{};
-      for (std::size_t m = 0; m < 4; ++m) q[m] = ids[quads[k][m]];
+      for (std::size_t m = 0; m < 4; ++m) q[m] = ids[plan.now.quads[k][m]];
       const auto id = static_cast<std::uint32_t>(pq_.quads.size());
       pq_.quads.push_back(q);
       alive_.push_back(true);
       for (std::uint32_t v : q) around_[v].push_back(id);
     }
-    return true;
   }
 
   PatchQuads& pq_;
   int iterations_;
   double below_;  ///< quads worse than this get a re-fill tried
+  bool parallel_;
   std::vector<bool> alive_;
   std::vector<std::vector<std::uint32_t>> around_;  ///< node -> alive quads at it
   std::vector<int> changed_;  ///< node -> the last pass that moved or made it (-1: none)
+  std::vector<std::uint64_t> written_;  ///< node -> the last batch whose re-fill changed it
+  std::uint64_t batch_id_ = 0;
 };
 
 }  // namespace
@@ -360,11 +433,15 @@ std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations, do
     std::size_t kept = 0;
   };
   std::vector<Result> results(part.patches.size());
-  for_each_patch(part.patches.size(), [&](std::size_t p) {
+  // With fewer patches than cores, each patch's attempts run in parallel instead.
+  std::size_t busy = 0;
+  for (const auto& e : by_patch) if (!e.empty()) ++busy;
+  const bool inner = busy < worker_threads();
+  parallel_for(part.patches.size(), [&](std::size_t p) {
     Result& r = results[p];
     r.pq = patch_quads(part, mesh, p, by_patch[p], pinned);
     if (r.pq.quads.empty()) return;
-    PatchRefill refill(r.pq, iterations, below);
+    PatchRefill refill(r.pq, iterations, below, inner);
     for (int pass = 0; pass < kRefillPasses; ++pass) {
       const std::size_t more = refill.run(pass);
       r.kept += more;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdlib>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -78,23 +79,39 @@ PatchQuads patch_quads(const Part& part,
   return pq;
 }
 
-void for_each_patch(std::size_t n, const std::function<void(std::size_t)>& fn) {
-  const std::size_t threads =
-      std::min<std::size_t>(n, std::max(1u, std::thread::hardware_concurrency()));
+std::size_t worker_threads() {
+  static const std::size_t threads = [] {
+    const char* env = std::getenv("LAYTRACKS_THREADS");
+    if (env != nullptr) {
+      char* end = nullptr;
+      const long n = std::strtol(env, &end, 10);
+      if (end != env && *end == '\0' && n >= 1) return static_cast<std::size_t>(n);
+    }
+    return static_cast<std::size_t>(std::max(1u, std::thread::hardware_concurrency()));
+  }();
+  return threads;
+}
+
+void parallel_for(std::size_t n, const std::function<void(std::size_t)>& fn) {
+  const std::size_t threads = std::min(n, worker_threads());
   if (threads <= 1) {
-    for (std::size_t p = 0; p < n; ++p) fn(p);
+    for (std::size_t i = 0; i < n; ++i) fn(i);
     return;
   }
   std::atomic<std::size_t> next{0};
   std::exception_ptr error;
+  std::size_t error_index = n;
   std::mutex error_mutex;
   auto work = [&] {
-    for (std::size_t p = next++; p < n; p = next++) {
+    for (std::size_t i = next++; i < n; i = next++) {
       try {
-        fn(p);
+        fn(i);
       } catch (...) {
         const std::lock_guard<std::mutex> lock(error_mutex);
-        if (!error) error = std::current_exception();
+        if (i < error_index) {
+          error = std::current_exception();
+          error_index = i;
+        }
       }
     }
   };

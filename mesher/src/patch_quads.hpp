@@ -37,10 +37,15 @@ PatchQuads patch_quads(const Part& part,
                        const std::vector<std::uint32_t>& elements,
                        const std::vector<bool>& pinned);
 
-/// Runs fn(p) for every p in [0, n), on as many threads as the machine has (at most n; on the
-/// calling thread when that is one). For passes whose work on one patch reads and writes
-/// nothing another patch's work writes: the result is the same as in order. The first
-/// exception thrown is rethrown here after every thread has ended.
-void for_each_patch(std::size_t n, const std::function<void(std::size_t)>& fn);
+/// The threads a part's passes use: the environment's LAYTRACKS_THREADS (a whole number from
+/// 1) when set, else as many as the machine has. The output does not depend on it.
+std::size_t worker_threads();
+
+/// Runs fn(i) for every i in [0, n), on worker_threads() threads (at most n; on the
+/// calling thread when that is one). For work on one index that reads and writes nothing the
+/// work on another index writes (a patch's nodes, a face's quads): the result is the same as
+/// in order. After every thread has ended, the exception of the lowest index that threw is
+/// rethrown (every index runs, so which one is deterministic).
+void parallel_for(std::size_t n, const std::function<void(std::size_t)>& fn);
 
 }  // namespace laytracks::mesher_detail

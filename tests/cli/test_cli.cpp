@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -306,6 +307,30 @@ TEST_CASE("mesh writes a valid all-quad mesh in every format, byte-identical run
   const Run rated = run("quality " + part + " " + q(d / "a.msh"));
   CHECK(rated.status == 0);
   CHECK_THAT(rated.out, Catch::Contains("valid by quality.md: yes"));
+}
+
+TEST_CASE("mesh writes the same bytes on one thread as on several", "[cli][determinism]") {
+  // The faces of a patch are filled, and a one-patch part's re-fill attempts evaluated, in
+  // parallel (the attempts speculatively, in batches against the mesh before the batch, each
+  // evaluated again when an earlier one of its batch changed what it read); the patches of a
+  // part are re-filled and smoothed in parallel. None of it may change a bit of the output.
+  const fs::path d = fresh_dir("threads");
+  for (const std::string& part : {laytracks::test::cases_dir() + "/external/cgal_wiggly_03_cgal.json",
+                                 samples_dir() + "/tray_ribs.json"}) {
+    CAPTURE(part);
+    std::vector<std::string> outputs;
+    for (const char* threads : {"1", "4"}) {
+      ::setenv("LAYTRACKS_THREADS", threads, 1);
+      const Run r = run("mesh " + q(part) + " -o " + q(d / "m.msh") + " --quiet --report " +
+                        q(d / "r.json"));
+      ::unsetenv("LAYTRACKS_THREADS");
+      REQUIRE(r.status == 0);
+      outputs.push_back(slurp(d / "m.msh"));
+      // Re-fills were made (the parallel attempts had something to decide).
+      CHECK(nlohmann::json::parse(slurp(d / "r.json"))["cavity_refills"].get<int>() > 0);
+    }
+    CHECK(outputs[0] == outputs[1]);
+  }
 }
 
 TEST_CASE("mesh refuses what it cannot mesh, writes nothing, and says where", "[cli][mesh]") {
