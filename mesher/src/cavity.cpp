@@ -340,17 +340,19 @@ class PatchRefill {
     // No quad mesh of the cavity beats what its pinned corners allow: skip hopeless ones.
     const double bound = corner_bound(face.cycle, cycle);
     if (bound < before + kRefillGain) return std::nullopt;
-    // The old quads relaxed with the quads round the cavity: what the smoothing could do
-    // without a re-fill. When that is good enough, or as good as the corners allow, no fill.
-    const Local was = relaxed(face.cycle, cycle, old_inner, old_quads, ring, cf);
-    if (was.worst >= below_ || bound < was.worst + kRefillGain) return std::nullopt;
     FaceSide all;
     all.kind = FaceSide::Kind::Boundary;
     all.edges = static_cast<std::uint32_t>(cycle.size());
     face.sides.push_back(all);
+    // The fill first: a third of the cavities get no valid quads from any template, and then
+    // the relaxation below is not needed.
     const std::optional<FaceMesh> filled = fill_cavity(face);
     if (!filled) return std::nullopt;
     const FaceMesh& fm = *filled;
+    // The old quads relaxed with the quads round the cavity: what the smoothing could do
+    // without a re-fill. When that is good enough, or as good as the corners allow, no re-fill.
+    const Local was = relaxed(face.cycle, cycle, old_inner, old_quads, ring, cf);
+    if (was.worst >= below_ || bound < was.worst + kRefillGain) return std::nullopt;
 
     // The old quads and the new, each relaxed with the quads round the cavity: the new are kept
     // when their worst (and that of the quads round them that moved) beats the old's by
