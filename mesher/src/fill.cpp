@@ -1502,7 +1502,7 @@ FaceMesh fill_face(const FaceInput& face, const std::string& where) {
                         " boundary nodes; a face needs an even number, at least 4");
   }
   const std::optional<FaceMesh> best = fill_any(face, 0);
-  if (best && best->min_jacobian > kMinValidJacobian) return *best;
+  if (best && best->min_jacobian > kLastResortJacobian) return *best;
   std::ostringstream s;
   s << "mesher: no template gives valid quads in " << where << " (" << n
     << " boundary nodes, " << face.sides.size() << " sides";

@@ -171,4 +171,11 @@ constexpr double kOptimizeTolerance = 1e-4;
 /// that the 3D check, which sees the nodes after the frame round trip, agrees).
 constexpr double kMinValidJacobian = 1e-3;
 
+/// A face that no template fills with quads above kMinValidJacobian still takes the best
+/// template whose worst corner is above this, rather than the part being refused: a mesh with
+/// a sliver is valid (quality.md: every corner's scaled Jacobian above 0), none is not. A gap
+/// of 1/500 of an element between two holes (a 0.001 bridge) leaves 4.5e-4 at its ends.
+/// Still five orders of magnitude above what the frame round trip changes.
+constexpr double kLastResortJacobian = 1e-5;
+
 }  // namespace laytracks::mesher_detail
