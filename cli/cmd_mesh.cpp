@@ -36,7 +36,10 @@ const char* const kMeshHelp =
     "  --report R.json  quality figures before and after smoothing (with the element sizes\n"
     "                   and the worst ratio between neighbours), counts, time per stage\n"
     "  --debug-dump DIR if the mesh fails its check, write DIR/mesh.msh and DIR/part.json\n"
-    "  --quiet          print nothing but errors\n";
+    "  --quiet          print nothing but errors\n"
+    "\n"
+    "The passes use all cores; LAYTRACKS_THREADS=N in the environment sets how many. The\n"
+    "output is the same, byte for byte, for every N.\n";
 
 namespace {
 
