@@ -20,6 +20,7 @@
 #include "commands.hpp"
 #include "laytracks/io/atomic_file.hpp"
 #include "laytracks/io/mesh_output.hpp"
+#include "laytracks/mesher/mesh_part.hpp"
 #include "meshing.hpp"
 
 namespace laytracks::cli {
@@ -57,7 +58,8 @@ const char* const kBatchHelp =
     "\n"
     "  -o OUTDIR        the output folder, made if missing\n"
     "  --format F       msh (default), vtu, bdf, inp, obj or off\n"
-    "  -j N             parts meshed at once (default: the number of hardware threads)\n"
+    "  -j N             parts meshed at once (default: the number of hardware threads);\n"
+    "                   each part's passes use the hardware threads / N\n"
     "The meshing options apply to every part, as in `laytracks mesh`:\n"
     LAYTRACKS_MESHING_OPTIONS_HELP
     "  --quiet          no progress on stderr (the table is still printed)\n"
@@ -502,6 +504,9 @@ int run_batch(const std::vector<std::string>& argv_in) {
   for (const Job& job : jobs) outputs.push_back(outdir / (job.name + "." + format));
 
   threads = std::min(threads, jobs.size());
+  // Parts at once share the cores: each part's passes get the rest (1 with -j at the core
+  // count; all of them for one part at a time).
+  set_mesher_threads(std::max<std::size_t>(1, std::max(1u, std::thread::hardware_concurrency()) / std::max<std::size_t>(1, threads)));
   std::vector<Row> rows(jobs.size());
   Progress progress(jobs.size(), quiet);
   std::atomic<std::size_t> next{0};

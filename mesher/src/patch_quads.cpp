@@ -1,5 +1,7 @@
 #include "patch_quads.hpp"
 
+#include "laytracks/mesher/mesh_part.hpp"
+
 #include <algorithm>
 #include <atomic>
 #include <cstdlib>
@@ -79,17 +81,24 @@ PatchQuads patch_quads(const Part& part,
   return pq;
 }
 
+namespace {
+std::atomic<std::size_t> g_mesher_threads{0};
+}  // namespace
+
 std::size_t worker_threads() {
-  static const std::size_t threads = [] {
+  static const std::size_t from_env = [] {
     const char* env = std::getenv("LAYTRACKS_THREADS");
     if (env != nullptr) {
       char* end = nullptr;
       const long n = std::strtol(env, &end, 10);
       if (end != env && *end == '\0' && n >= 1) return static_cast<std::size_t>(n);
     }
-    return static_cast<std::size_t>(std::max(1u, std::thread::hardware_concurrency()));
+    return std::size_t{0};
   }();
-  return threads;
+  if (from_env != 0) return from_env;
+  const std::size_t set = g_mesher_threads.load();
+  if (set != 0) return set;
+  return static_cast<std::size_t>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
 void parallel_for(std::size_t n, const std::function<void(std::size_t)>& fn) {
@@ -123,3 +132,9 @@ void parallel_for(std::size_t n, const std::function<void(std::size_t)>& fn) {
 }
 
 }  // namespace laytracks::mesher_detail
+
+namespace laytracks {
+
+void set_mesher_threads(std::size_t threads) { mesher_detail::g_mesher_threads = threads; }
+
+}  // namespace laytracks

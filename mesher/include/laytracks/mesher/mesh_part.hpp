@@ -23,6 +23,12 @@ namespace laytracks {
 /// and arc points) from their centroid (the same in every pose).
 double default_element_size(const Part& part);
 
+/// The threads each mesh_part call uses for its passes (face fills, re-fill, smoothing); 0
+/// (the default): as many as the machine has. LAYTRACKS_THREADS in the environment, when set,
+/// takes precedence. The output does not depend on it. `batch`, which meshes several parts at
+/// once, gives each its share of the cores.
+void set_mesher_threads(std::size_t threads);
+
 /// Default smoothing sweeps of `laytracks mesh` (docs/mesher.md says why).
 constexpr int kDefaultSmooth = 10;
 
