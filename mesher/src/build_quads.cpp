@@ -74,6 +74,14 @@ constexpr double kFootWidthBound = 2.0;
 /// (15 degrees: cgal_complex_1 0.18 -> 0.34 against 10 degrees; taken alone, 10 gave 0.18).
 constexpr double kMinWedgeAngle = 15.0 * kPi / 180.0;
 constexpr double kMaxWedgeFeet = 0.5;
+/// Round fans (drop_narrow_fans): at least kRoundFanRails rails at one MA point, at most
+/// kRoundFanOpenGaps wedges between them not capped by plain boundary; their wedges are merged
+/// while narrower than kRoundFanAngle (on the 217 generated parts 30 and 35 degrees gave the
+/// same meshes, 40 one better: a keyhole's round tip 0.608 -> 0.649; 25 left a gear's teeth at
+/// 0.678 and 45 at 0.727 instead of 0.749).
+constexpr std::size_t kRoundFanRails = 6;
+constexpr std::size_t kRoundFanOpenGaps = 2;
+constexpr double kRoundFanAngle = 40.0 * kPi / 180.0;
 /// Two MA points of a patch closer than this x h (in adaptive mode h is MIN_END_WIDTH, the
 /// finest track) are one node.
 constexpr double kMergeMaPoints = 1e-3;
@@ -522,6 +530,66 @@ class QuadBuilder {
     g.edges.push_back(c);
   }
 
+  /// Thins a round fan (drop_narrow_fans): each run of consecutive plain-capped wedges
+  /// (rails r_0 .. r_n, angle A in all) keeps its two end rails and k - 1 between them,
+  /// k = ceil(A / kRoundFanAngle): r_(i n / k) rounded, i = 1 .. k - 1, counted from the end
+  /// whose foot has the smaller mesh node id. Node ids and the wedges' count, not which angle
+  /// is the smallest (the wedges of an arc are all alike, and rounding would choose), so every
+  /// pose keeps the same rails. `rails` is sorted round the centre and loses the dropped ones.
+  template <class Gap, class Plain>
+  void thin_round_fan(const PatchGraph& g, std::vector<std::uint32_t>& rails, const Gap& gap,
+                      const Plain& plain_cap, std::vector<bool>& drop, std::vector<int>& feet) {
+    const std::size_t r = rails.size();
+    // Start after a gap that ends a run: an open one, else the widest.
+    std::size_t start = r;
+    for (std::size_t k = 0; k < r && start == r; ++k)
+      if (!plain_cap(k)) start = (k + 1) % r;
+    if (start == r) {
+      std::size_t widest = 0;
+      for (std::size_t k = 1; k < r; ++k)
+        if (gap(k) > gap(widest)) widest = k;
+      start = (widest + 1) % r;
+    }
+    std::vector<bool> gone(r, false);
+    std::vector<std::size_t> run{start};  // positions in `rails`
+    double angle = 0.0;
+    auto finish_run = [&] {
+      const std::size_t n = run.size() - 1;  // wedges
+      const auto k = static_cast<std::size_t>(std::ceil(angle / kRoundFanAngle - 1e-9));
+      if (n >= 2 && k < n) {
+        const auto id = [&](std::size_t pos) { return g.nodes[g.edges[rails[pos]].a].mesh; };
+        if (id(run.back()) < id(run.front())) std::reverse(run.begin(), run.end());
+        std::vector<bool> keep(n + 1, false);
+        for (std::size_t i = 0; i <= std::max<std::size_t>(k, 1); ++i)
+          keep[(i * n + std::max<std::size_t>(k, 1) / 2) / std::max<std::size_t>(k, 1)] = true;
+        for (std::size_t i = 0; i <= n; ++i)
+          if (!keep[i]) gone[run[i]] = true;
+      }
+    };
+    for (std::size_t step = 0; step < r; ++step) {
+      const std::size_t k = (start + step) % r;
+      if (plain_cap(k) && step + 1 < r) {
+        angle += gap(k);
+        run.push_back((k + 1) % r);
+        continue;
+      }
+      finish_run();
+      run.assign(1, (k + 1) % r);
+      angle = 0.0;
+    }
+    std::vector<std::uint32_t> kept;
+    for (std::size_t i = 0; i < r; ++i) {
+      if (!gone[i]) {
+        kept.push_back(rails[i]);
+        continue;
+      }
+      drop[rails[i]] = true;
+      --feet[g.edges[rails[i]].a];
+      ++result_.stats.narrow_fans;
+    }
+    rails = std::move(kept);
+  }
+
   /// Two rails leaving one boundary node (a concave corner's fan) less than kMinFanAngle apart
   /// bound a sliver no quad fits well: of the closest pair of neighbouring rails, the longer is
   /// dropped, and again until no pair is that close (its MA end may then dangle, and the rest
@@ -530,10 +598,29 @@ class QuadBuilder {
   /// long as each other (the radius) leave the one whose loss leaves the smaller angle to its
   /// other neighbour. Angles and lengths choose, never the order of the rails, so that every
   /// pose drops the same rails.
+  /// A round fan (uniform mode): an MA point where at least kRoundFanRails rails meet, all but
+  /// kRoundFanOpenGaps of the wedges between them capped by plain boundary (the feet joined
+  /// along the boundary through no other rail's foot: an arc or a polygonised arc whose
+  /// centre this is, a fillet, a slot's or a gear tooth's round end), and not a disk (a gap
+  /// above kDiskGap), is thinned first (thin_round_fan) to wedges of about kRoundFanAngle,
+  /// however far apart their feet: every rail of the arc meets at the centre, and the apex
+  /// quad of a wedge is as thin as its angle (a 180-degree round end of radius 10 h: 28
+  /// wedges of 6.4 degrees, worst corner 0.105).
   void drop_narrow_fans(PatchGraph& g, bool at_ma) {
     std::map<std::uint32_t, std::vector<std::uint32_t>> at;  // node -> its rails
     for (std::uint32_t e = 0; e < g.edges.size(); ++e)
       if (g.edges[e].rail) at[at_ma ? g.edges[e].b : g.edges[e].a].push_back(e);
+    // Round fans: rails (kept so far) leaving each boundary node, and each boundary node's
+    // neighbours along the boundary.
+    std::vector<int> feet(g.nodes.size(), 0);
+    for (const CEdge& e : g.edges)
+      if (e.rail) ++feet[e.a];
+    std::map<std::uint32_t, std::vector<std::uint32_t>> along;
+    for (const CEdge& e : g.edges)
+      if (!e.rail) {
+        along[e.a].push_back(e.b);
+        along[e.b].push_back(e.a);
+      }
     const double tol = kSamePointRel * part_.size;
     std::vector<bool> drop(g.edges.size(), false);
     for (auto& [node, rails] : at) {
@@ -549,6 +636,37 @@ class QuadBuilder {
         const Vec2 u = dir(rails[k]), v = dir(rails[(k + 1) % rails.size()]);
         return std::abs(std::atan2(cross(u, v), dot(u, v)));
       };
+      // Is this MA point the centre of a round fan (round_fan below)? Its wedges' caps are
+      // plain boundary: feet of rails k and k + 1 joined along the boundary through no foot of
+      // any other rail (topology only: the same in every pose).
+      auto plain_cap = [&](std::size_t k) {
+        const std::uint32_t f1 = g.edges[rails[k]].a, f2 = g.edges[rails[(k + 1) % rails.size()]].a;
+        const auto neighbours = along.find(f1);
+        if (neighbours == along.end()) return false;
+        for (std::uint32_t first : neighbours->second) {
+          std::uint32_t prev = f1, cur = first;
+          for (std::size_t step = 0; step <= g.nodes.size(); ++step) {
+            if (cur == f2) return true;
+            const auto nb = along.find(cur);
+            if (feet[cur] > 0 || nb == along.end() || nb->second.size() != 2) break;
+            const std::uint32_t next = nb->second[0] == prev ? nb->second[1] : nb->second[0];
+            prev = cur;
+            cur = next;
+          }
+        }
+        return false;
+      };
+      bool round_fan = false;
+      if (at_ma && !law_ && rails.size() >= kRoundFanRails) {
+        std::size_t open = 0;
+        double widest = 0.0;
+        for (std::size_t k = 0; k < rails.size(); ++k) {
+          if (!plain_cap(k)) ++open;
+          widest = std::max(widest, gap(k));
+        }
+        round_fan = open <= kRoundFanOpenGaps && widest > kDiskGap;
+      }
+      if (round_fan) thin_round_fan(g, rails, gap, plain_cap, drop, feet);
       while (rails.size() >= 2) {
         double closest = at_ma ? kMinWedgeAngle : kMinFanAngle;
         std::size_t pick = rails.size();
@@ -574,6 +692,7 @@ class QuadBuilder {
           gone = before <= after ? pick : other;
         }
         drop[rails[gone]] = true;
+        --feet[g.edges[rails[gone]].a];
         ++result_.stats.narrow_fans;
         rails.erase(rails.begin() + static_cast<std::ptrdiff_t>(gone));
       }

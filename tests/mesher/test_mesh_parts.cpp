@@ -194,6 +194,32 @@ TEST_CASE("a bridge a five-hundredth of an element wide between two holes meshes
   }
 }
 
+TEST_CASE("the rails of a large fillet do not all meet at its centre, in every pose",
+          "[mesh][fan]") {
+  // A 20 x 10 plate whose corners are rounded with radius 4.99 (nearly round ends) or 4
+  // (7 elements): every rail of an arc meets at its centre, and the wedges there were 6.4
+  // degrees (worst corner 0.106) and 10 degrees (0.566). Thinned to about 40 degrees
+  // (kRoundFanAngle), by node ids and counts, so that every pose keeps the same rails.
+  const struct {
+    const char* file;
+    double worst;
+  } cases[] = {{"round_ends.json", 0.55}, {"corner_fillets.json", 0.65}};
+  for (const auto& c : cases) {
+    INFO(c.file);
+    const RawPart raw = read_brep_json(test_data_dir() + "/parts/" + c.file);
+    std::optional<std::size_t> quads;
+    for (const Transform& t : {Transform{}, compose(rotation({1.0, 2.0, 3.0}, 0.7), scaling(1e3)),
+                               compose(mirror_x(), scaling(1e-3))}) {
+      const MeshPartResult r = mesh_part(build_part(transformed(raw, t)), MeshPartOptions{});
+      CHECK(r.check.valid());
+      CHECK(r.quality.measures[6].worst > c.worst);
+      CHECK(r.stats.narrow_fans > 0);
+      if (!quads) quads = r.mesh.elements.size();
+      CHECK(r.mesh.elements.size() == *quads);
+    }
+  }
+}
+
 TEST_CASE("breaks a hundredth of an element apart are one node", "[mesh][bridge]") {
   // Found by the stress generator: a plate with three holes at 3x its default size (two rails
   // landing 0.002 h apart on a hole left a face of 28 nodes no template could fill), and two
