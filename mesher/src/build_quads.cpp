@@ -1281,7 +1281,7 @@ void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations) {
     const Frame& frame = part.patches[p].frame;
     PatchQuads pq = patch_quads(part, mesh, p, by_patch[p], pinned);
     const std::vector<Vec2> before = pq.pos;
-    final_sweeps(pq.pos, pq.fixed, pq.quads, iterations);
+    final_sweeps(pq.pos, pq.fixed, pq.quads, iterations, kFinalUntangleTarget);
     for (std::size_t i = 0; i < pq.global.size(); ++i)
       if (pq.pos[i] != before[i]) mesh.nodes[pq.global[i]] = frame.to_3d(pq.pos[i]);
   });

@@ -1549,12 +1549,16 @@ double settled(double jacobian) { return std::round(jacobian / kJacobianGrain) *
 void final_sweeps(std::vector<Vec2>& pos,
                   const std::vector<bool>& fixed,
                   const std::vector<std::array<std::uint32_t, 4>>& quads,
-                  int iterations) {
+                  int iterations,
+                  double target) {
   smooth_nodes(pos, fixed, quads, iterations);
   // Then the corners' angles, against the edge lengths the Laplacian sweeps left.
   optimize_nodes(pos, fixed, quads, iterations);
-  // Then each node still in a quad below kFinalUntangleTarget moves to raise its worst quad.
-  untangle_nodes(pos, fixed, quads, iterations, kFinalUntangleTarget, kFinalEdgeFraction);
+  // Then each node still in a quad below `target` moves to raise its worst quad (above
+  // kFinalEscapeTarget without the escape of nodes with a too short edge).
+  untangle_nodes(pos, fixed, quads, iterations, std::min(target, kFinalEscapeTarget), kFinalEdgeFraction);
+  if (target > kFinalEscapeTarget)
+    untangle_nodes(pos, fixed, quads, iterations, target, kFinalEdgeFraction, false);
 }
 
 namespace {
@@ -1679,7 +1683,8 @@ void untangle_nodes(std::vector<Vec2>& pos,
                     const std::vector<std::array<std::uint32_t, 4>>& quads,
                     int iterations,
                     double target,
-                    double min_edge_fraction) {
+                    double min_edge_fraction,
+                    bool escape) {
   const std::size_t n = pos.size();
   std::vector<std::vector<std::uint32_t>> around(n);
   for (std::uint32_t q = 0; q < quads.size(); ++q)
@@ -1825,7 +1830,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
     // (current is then -infinity): before, any position with long enough edges was
     // "better", however inverted its quads (tray_ribs, adaptive, dtheta 1: a quad turned
     // clockwise in floor_ne).
-    const double floor_j = std::min(settled(before), kSmoothFloor);
+    const double floor_j = escape ? std::min(settled(before), kSmoothFloor) : settled(before);
     step *= 0.25;
     Vec2 ref{1.0, 0.0};
     for (std::size_t k = 0; k < 4; ++k)

@@ -126,13 +126,15 @@ constexpr double kMinEdgeFraction = 0.2;
 /// raises the smallest scaled Jacobian of the quads around it (it untangles inverted quads).
 /// A node may not come closer to a neighbour than min_edge_fraction x its mean edge before the
 /// sweeps; one already closer takes a position that lengthens the edge, but none that takes
-/// its worst quad below min(its value before, kSmoothFloor): no quad is ever inverted.
+/// its worst quad below min(its value before, kSmoothFloor): no quad is ever inverted. Without
+/// `escape`, not below its value before either: no move lowers the worst quad of the mesh.
 void untangle_nodes(std::vector<Vec2>& pos,
                     const std::vector<bool>& fixed,
                     const std::vector<std::array<std::uint32_t, 4>>& quads,
                     int iterations,
                     double target = kAcceptJacobian,
-                    double min_edge_fraction = kMinEdgeFraction);
+                    double min_edge_fraction = kMinEdgeFraction,
+                    bool escape = true);
 
 /// The relaxations' accept / reject tests (and the cavity re-fill's) compare scaled Jacobians
 /// rounded to this: a quad's value that is exact by construction (a flat corner at a midpoint
@@ -151,18 +153,32 @@ double settled(double jacobian);
 double interior_angle(const std::vector<Vec2>& poly, std::size_t i);
 
 /// The final smoothing's untangler works on every node with a quad below this (the
-/// templates' relaxation stops at kAcceptJacobian, the bound of their choice) ...
-constexpr double kFinalUntangleTarget = 0.6;
+/// templates' relaxation stops at kAcceptJacobian, the bound of their choice; 0.6 until
+/// session 8, when 0.7 (past kFinalEscapeTarget) raised the worst corner of 47 of the 217
+/// generated parts and lowered none (cover_bosses 0.622 -> 0.692, the tray at 10,668 quads
+/// 0.606 -> 0.701) for +0.2 points of taper <= 0.8 on average; 0.8 raised more (cover_bosses
+/// 0.758) but cost +0.6 points of taper and +0.2 of aspect >= 5) ...
+constexpr double kFinalUntangleTarget = 0.7;
+/// Up to this the final untangling may move a node with a too short edge at the cost of its
+/// worst quad (the escape of untangle_nodes); from this to kFinalUntangleTarget only where its
+/// worst quad does not fall (with the escape all the way, cover_bosses in adaptive mode fell
+/// 0.599 -> 0.532).
+constexpr double kFinalEscapeTarget = 0.6;
+/// ... and a cavity's relaxation (refill_cavities) towards this: what decides a re-fill
+/// (0.7 there changed which re-fills were kept: cgal_hole 0.730 -> 0.700).
+constexpr double kRefillUntangleTarget = 0.6;
 /// ... and keeps a node's edges above this x their mean length before the sweeps.
 constexpr double kFinalEdgeFraction = 0.3;
 
 /// The sweeps of the final smoothing (docs/mesher.md, "Smoothing"): `iterations` Laplacian
-/// sweeps, then as many of angle optimisation and of untangling towards
-/// kFinalUntangleTarget. No quad is ever inverted; `fixed` nodes stay.
+/// sweeps, then as many of angle optimisation and of untangling towards `target`
+/// (kFinalUntangleTarget, or kRefillUntangleTarget for a cavity). No quad is ever inverted;
+/// `fixed` nodes stay.
 void final_sweeps(std::vector<Vec2>& pos,
                   const std::vector<bool>& fixed,
                   const std::vector<std::array<std::uint32_t, 4>>& quads,
-                  int iterations);
+                  int iterations,
+                  double target);
 
 /// A node whose Newton step promises less decrease of its objective than this stays.
 constexpr double kOptimizeTolerance = 1e-4;
