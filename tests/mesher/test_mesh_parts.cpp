@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "laytracks/brep/build.hpp"
 #include "laytracks/io/brep_json.hpp"
@@ -13,6 +14,26 @@
 
 using namespace laytracks;
 using namespace laytracks::test;
+
+namespace {
+
+/// Meshes `raw` at its default size as given, turned and scaled by 1e3, and mirrored and
+/// scaled by 1e-3: each mesh valid, its worst corner above `worst`, as many quads in each pose.
+/// Returns the three results.
+std::vector<MeshPartResult> check_three_poses(const RawPart& raw, double worst) {
+  std::vector<MeshPartResult> out;
+  for (const Transform& t : {Transform{}, compose(rotation({1.0, 2.0, 3.0}, 0.7), scaling(1e3)),
+                             compose(mirror_x(), scaling(1e-3))}) {
+    out.push_back(mesh_part(build_part(transformed(raw, t)), MeshPartOptions{}));
+    const MeshPartResult& r = out.back();
+    CHECK(r.check.valid());
+    CHECK(r.quality.measures[6].worst > worst);
+    CHECK(r.mesh.elements.size() == out.front().mesh.elements.size());
+  }
+  return out;
+}
+
+}  // namespace
 
 TEST_CASE("every part meshes to a valid all-quad mesh", "[mesh]") {
   std::size_t meshed = 0;
@@ -207,17 +228,7 @@ TEST_CASE("a bridge a five-hundredth of an element wide between two holes meshes
   // default element is about 0.5). Where the bridge meets the plate no template does better
   // than a corner of 4.5e-4, and the part was refused; a sliver there is valid (quality.md:
   // every corner above 0), a refusal is no mesh (kLastResortJacobian).
-  const RawPart raw = read_brep_json(test_data_dir() + "/parts/holes_bridge_1e-3.json");
-  std::optional<std::size_t> quads;
-  for (const Transform& t : {Transform{}, compose(rotation({1.0, 2.0, 3.0}, 0.7), scaling(1e3)),
-                             compose(mirror_x(), scaling(1e-3))}) {
-    const Part part = build_part(transformed(raw, t));
-    const MeshPartResult r = mesh_part(part, MeshPartOptions{});
-    CHECK(r.check.valid());
-    CHECK(r.quality.measures[6].worst > 0.0);
-    if (!quads) quads = r.mesh.elements.size();
-    CHECK(r.mesh.elements.size() == *quads);
-  }
+  check_three_poses(read_brep_json(test_data_dir() + "/parts/holes_bridge_1e-3.json"), 0.0);
 }
 
 TEST_CASE("the rails of a large fillet do not all meet at its centre, in every pose",
@@ -232,17 +243,9 @@ TEST_CASE("the rails of a large fillet do not all meet at its centre, in every p
   } cases[] = {{"round_ends.json", 0.55}, {"corner_fillets.json", 0.65}};
   for (const auto& c : cases) {
     INFO(c.file);
-    const RawPart raw = read_brep_json(test_data_dir() + "/parts/" + c.file);
-    std::optional<std::size_t> quads;
-    for (const Transform& t : {Transform{}, compose(rotation({1.0, 2.0, 3.0}, 0.7), scaling(1e3)),
-                               compose(mirror_x(), scaling(1e-3))}) {
-      const MeshPartResult r = mesh_part(build_part(transformed(raw, t)), MeshPartOptions{});
-      CHECK(r.check.valid());
-      CHECK(r.quality.measures[6].worst > c.worst);
+    for (const MeshPartResult& r :
+         check_three_poses(read_brep_json(test_data_dir() + "/parts/" + c.file), c.worst))
       CHECK(r.stats.narrow_fans > 0);
-      if (!quads) quads = r.mesh.elements.size();
-      CHECK(r.mesh.elements.size() == *quads);
-    }
   }
 }
 
