@@ -42,8 +42,12 @@ constexpr std::size_t kMaxCavityNodes = 48;
 /// A cavity is relaxed by the final smoothing's sweeps (final_sweeps), at most kRefillSweeps
 /// of each kind (the cavity is small).
 constexpr int kRefillSweeps = 4;
-/// Attempts evaluated in parallel at a time (when the patch's re-fill runs alone).
+/// Attempts evaluated in parallel at a time (when the patch's re-fill runs alone, and it has
+/// at least kRefillParallelQuads quads: in a smaller patch the attempts of a batch read the
+/// same nodes and most are evaluated again; l_shape's 203 quads: refill 0.003 s alone, 0.009 s
+/// in batches).
 constexpr std::size_t kRefillBatch = 8;
+constexpr std::size_t kRefillParallelQuads = 500;
 constexpr std::uint32_t kNew = 0xffffffffu;
 
 class PatchRefill {
@@ -443,7 +447,7 @@ std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations, do
     Result& r = results[p];
     r.pq = patch_quads(part, mesh, p, by_patch[p], pinned);
     if (r.pq.quads.empty()) return;
-    PatchRefill refill(r.pq, iterations, below, inner);
+    PatchRefill refill(r.pq, iterations, below, inner && r.pq.quads.size() >= kRefillParallelQuads);
     for (int pass = 0; pass < kRefillPasses; ++pass) {
       const std::size_t more = refill.run(pass);
       r.kept += more;
