@@ -164,6 +164,8 @@ constexpr double kFinalUntangleTarget = 0.7;
 /// worst quad does not fall (with the escape all the way, cover_bosses in adaptive mode fell
 /// 0.599 -> 0.532).
 constexpr double kFinalEscapeTarget = 0.6;
+/// ... and no quad stretched to this aspect ratio (quality.md's threshold) or more.
+constexpr double kStretchAspect = 5.0;
 /// ... and a cavity's relaxation (refill_cavities) towards this: what decides a re-fill
 /// (0.7 there changed which re-fills were kept: cgal_hole 0.730 -> 0.700).
 constexpr double kRefillUntangleTarget = 0.6;
