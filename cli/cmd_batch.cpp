@@ -506,7 +506,8 @@ int run_batch(const std::vector<std::string>& argv_in) {
   threads = std::min(threads, jobs.size());
   // Parts at once share the cores: each part's passes get the rest (1 with -j at the core
   // count; all of them for one part at a time).
-  set_mesher_threads(std::max<std::size_t>(1, std::max(1u, std::thread::hardware_concurrency()) / std::max<std::size_t>(1, threads)));
+  const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
+  set_mesher_threads(std::max<std::size_t>(1, cores / std::max<std::size_t>(1, threads)));
   std::vector<Row> rows(jobs.size());
   Progress progress(jobs.size(), quiet);
   std::atomic<std::size_t> next{0};

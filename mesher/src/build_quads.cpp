@@ -610,17 +610,20 @@ class QuadBuilder {
     std::map<std::uint32_t, std::vector<std::uint32_t>> at;  // node -> its rails
     for (std::uint32_t e = 0; e < g.edges.size(); ++e)
       if (g.edges[e].rail) at[at_ma ? g.edges[e].b : g.edges[e].a].push_back(e);
-    // Round fans: rails (kept so far) leaving each boundary node, and each boundary node's
-    // neighbours along the boundary.
+    // Round fans (MA points, uniform mode): rails (kept so far) leaving each boundary node,
+    // and each boundary node's neighbours along the boundary.
+    const bool fans = at_ma && !law_;
     std::vector<int> feet(g.nodes.size(), 0);
-    for (const CEdge& e : g.edges)
-      if (e.rail) ++feet[e.a];
     std::map<std::uint32_t, std::vector<std::uint32_t>> along;
-    for (const CEdge& e : g.edges)
-      if (!e.rail) {
+    for (const CEdge& e : g.edges) {
+      if (!fans) break;
+      if (e.rail) {
+        ++feet[e.a];
+      } else {
         along[e.a].push_back(e.b);
         along[e.b].push_back(e.a);
       }
+    }
     const double tol = kSamePointRel * part_.size;
     std::vector<bool> drop(g.edges.size(), false);
     for (auto& [node, rails] : at) {
@@ -657,7 +660,7 @@ class QuadBuilder {
         return false;
       };
       bool round_fan = false;
-      if (at_ma && !law_ && rails.size() >= kRoundFanRails) {
+      if (fans && rails.size() >= kRoundFanRails) {
         std::size_t open = 0;
         double widest = 0.0;
         for (std::size_t k = 0; k < rails.size(); ++k) {
@@ -692,7 +695,7 @@ class QuadBuilder {
           gone = before <= after ? pick : other;
         }
         drop[rails[gone]] = true;
-        --feet[g.edges[rails[gone]].a];
+        if (fans) --feet[g.edges[rails[gone]].a];
         ++result_.stats.narrow_fans;
         rails.erase(rails.begin() + static_cast<std::ptrdiff_t>(gone));
       }

@@ -214,7 +214,7 @@ class PatchRefill {
       l.quads.push_back(lq);
     }
     const std::vector<Vec2> start = l.pos;
-    final_sweeps(l.pos, fixed, l.quads, iterations_, kRefillUntangleTarget);
+    final_sweeps(l.pos, fixed, l.quads, iterations_, kFinalEscapeTarget);
     l.worst = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < l.quads.size(); ++k) {
       const Quad& q = l.quads[k];

@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include "laytracks/mesher/quality.hpp"
 #include "laytracks/brep/error.hpp"
 
 namespace laytracks::mesher_detail {
@@ -1555,10 +1556,10 @@ void final_sweeps(std::vector<Vec2>& pos,
   // Then the corners' angles, against the edge lengths the Laplacian sweeps left.
   optimize_nodes(pos, fixed, quads, iterations);
   // Then each node still in a quad below `target` moves to raise its worst quad (above
-  // kFinalEscapeTarget without the escape of nodes with a too short edge).
+  // kFinalEscapeTarget strictly: no worst quad falls, no quad is stretched).
   untangle_nodes(pos, fixed, quads, iterations, std::min(target, kFinalEscapeTarget), kFinalEdgeFraction);
   if (target > kFinalEscapeTarget)
-    untangle_nodes(pos, fixed, quads, iterations, target, kFinalEdgeFraction, false);
+    untangle_nodes(pos, fixed, quads, iterations, target, kFinalEdgeFraction, true);
 }
 
 namespace {
@@ -1684,7 +1685,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
                     int iterations,
                     double target,
                     double min_edge_fraction,
-                    bool escape) {
+                    bool strict) {
   const std::size_t n = pos.size();
   std::vector<std::vector<std::uint32_t>> around(n);
   for (std::uint32_t q = 0; q < quads.size(); ++q)
@@ -1773,25 +1774,22 @@ void untangle_nodes(std::vector<Vec2>& pos,
   };
   static const Vec2 kDirs[8] = {{1, 0}, {0.7071, 0.7071}, {0, 1}, {-0.7071, 0.7071},
                                 {-1, 0}, {-0.7071, -0.7071}, {0, -1}, {0.7071, -0.7071}};
-  // Without the escape (the final smoothing's second stage), a move may not stretch a quad
-  // round v to an aspect ratio of kStretchAspect or more (quality.md: the ratio of its
-  // midlines) that it did not have: raising the worst corner past 0.6 made cgal_Detmier's
-  // aspect >= 5 go 0 -> 1.4%.
-  const auto aspect_of = [](Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-    const Vec2 d1 = 0.5 * ((b + c) - (d + a)), d2 = 0.5 * ((c + d) - (a + b));
-    const double l1 = norm(d1), l2 = norm(d2);
-    return std::min(l1, l2) > 0.0 ? std::max(l1, l2) / std::min(l1, l2)
-                                  : std::numeric_limits<double>::infinity();
+  // Strict (the final smoothing's second stage): a move may not stretch a quad round v to an
+  // aspect ratio that quality.md calls bad (measure_quad, QualityThresholds) when it was not:
+  // raising the worst corner past 0.6 made cgal_Detmier's aspect >= 5 go 0 -> 1.4%.
+  const auto aspect_of = [&](const std::array<std::uint32_t, 4>& x) {
+    std::array<Vec3, 4> corners;
+    for (std::size_t k = 0; k < 4; ++k) corners[k] = {pos[x[k]].x, pos[x[k]].y, 0.0};
+    return measure_quad(corners, {0.0, 0.0, 1.0}).aspect_ratio;
   };
   const auto stretches = [&](std::uint32_t v, Vec2 p) {
     const Vec2 here = pos[v];
     for (std::uint32_t q : around[v]) {
-      const auto& x = quads[q];
-      const double now = aspect_of(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]);
+      const double now = aspect_of(quads[q]);
       pos[v] = p;
-      const double then = aspect_of(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]);
+      const double then = aspect_of(quads[q]);
       pos[v] = here;
-      if (then >= kStretchAspect && now < kStretchAspect) return true;
+      if (then >= QualityThresholds::kAspectRatio && now < QualityThresholds::kAspectRatio) return true;
     }
     return false;
   };
@@ -1852,7 +1850,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
     // (current is then -infinity): before, any position with long enough edges was
     // "better", however inverted its quads (tray_ribs, adaptive, dtheta 1: a quad turned
     // clockwise in floor_ne).
-    const double floor_j = escape ? std::min(settled(before), kSmoothFloor) : settled(before);
+    const double floor_j = strict ? settled(before) : std::min(settled(before), kSmoothFloor);
     step *= 0.25;
     Vec2 ref{1.0, 0.0};
     for (std::size_t k = 0; k < 4; ++k)
@@ -1892,7 +1890,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
             w = worst_at(v);
           }
           if (w > best + 1e-12 && w >= floor_j && keeps_sign(before, raw) &&
-              (escape || !stretches(v, p))) {
+              (!strict || !stretches(v, p))) {
             best = w;
             best_pos = p;
           }

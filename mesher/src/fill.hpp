@@ -126,15 +126,16 @@ constexpr double kMinEdgeFraction = 0.2;
 /// raises the smallest scaled Jacobian of the quads around it (it untangles inverted quads).
 /// A node may not come closer to a neighbour than min_edge_fraction x its mean edge before the
 /// sweeps; one already closer takes a position that lengthens the edge, but none that takes
-/// its worst quad below min(its value before, kSmoothFloor): no quad is ever inverted. Without
-/// `escape`, not below its value before either: no move lowers the worst quad of the mesh.
+/// its worst quad below min(its value before, kSmoothFloor): no quad is ever inverted. When
+/// `strict`, not below its value before either (no move lowers the worst quad of the mesh),
+/// and no move stretches a quad round the node to a bad aspect ratio (quality.md) it had not.
 void untangle_nodes(std::vector<Vec2>& pos,
                     const std::vector<bool>& fixed,
                     const std::vector<std::array<std::uint32_t, 4>>& quads,
                     int iterations,
                     double target = kAcceptJacobian,
                     double min_edge_fraction = kMinEdgeFraction,
-                    bool escape = true);
+                    bool strict = false);
 
 /// The relaxations' accept / reject tests (and the cavity re-fill's) compare scaled Jacobians
 /// rounded to this: a quad's value that is exact by construction (a flat corner at a midpoint
@@ -160,21 +161,18 @@ double interior_angle(const std::vector<Vec2>& poly, std::size_t i);
 /// 0.758) but cost +0.6 points of taper and +0.2 of aspect >= 5) ...
 constexpr double kFinalUntangleTarget = 0.7;
 /// Up to this the final untangling may move a node with a too short edge at the cost of its
-/// worst quad (the escape of untangle_nodes); from this to kFinalUntangleTarget only where its
-/// worst quad does not fall (with the escape all the way, cover_bosses in adaptive mode fell
-/// 0.599 -> 0.532).
+/// worst quad (the escape of untangle_nodes); from this to kFinalUntangleTarget only strictly
+/// (no worst quad falls, no quad is stretched to aspect >= 5; with the escape all the way,
+/// cover_bosses in adaptive mode fell 0.599 -> 0.532). A cavity (refill_cavities) is relaxed
+/// towards this alone: the re-fill judges by the first stage (towards 0.7 there, other
+/// re-fills were kept: cgal_hole 0.730 -> 0.700).
 constexpr double kFinalEscapeTarget = 0.6;
-/// ... and no quad stretched to this aspect ratio (quality.md's threshold) or more.
-constexpr double kStretchAspect = 5.0;
-/// ... and a cavity's relaxation (refill_cavities) towards this: what decides a re-fill
-/// (0.7 there changed which re-fills were kept: cgal_hole 0.730 -> 0.700).
-constexpr double kRefillUntangleTarget = 0.6;
 /// ... and keeps a node's edges above this x their mean length before the sweeps.
 constexpr double kFinalEdgeFraction = 0.3;
 
 /// The sweeps of the final smoothing (docs/mesher.md, "Smoothing"): `iterations` Laplacian
 /// sweeps, then as many of angle optimisation and of untangling towards `target`
-/// (kFinalUntangleTarget, or kRefillUntangleTarget for a cavity). No quad is ever inverted;
+/// (kFinalUntangleTarget, or kFinalEscapeTarget for a cavity). No quad is ever inverted;
 /// `fixed` nodes stay.
 void final_sweeps(std::vector<Vec2>& pos,
                   const std::vector<bool>& fixed,

@@ -81,9 +81,11 @@ std::size_t refill_cavities(const Part& part,
                             int iterations,
                             double below = kRefillBelowUniform);
 
-/// Smooths the interior nodes of every patch (`iterations` Laplacian sweeps in the patch
-/// frame, then as many untangling sweeps over nodes of quads below 0.3). Nodes on B-Rep edges never move; a move is kept only when no quad around the node
-/// falls below min(its scaled Jacobian before, 0.2), so no element is ever inverted.
+/// Smooths the interior nodes of every patch in its frame (docs/mesher.md, "Smoothing"):
+/// `iterations` Laplacian sweeps, as many of angle optimisation, then untangling sweeps over
+/// nodes of quads below 0.6, then strictly below 0.7. Nodes on B-Rep edges and seams never
+/// move; a move is kept only when no quad around the node falls below min(its scaled Jacobian
+/// before, 0.2), so no element is ever inverted.
 void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations);
 
 }  // namespace laytracks
