@@ -1176,11 +1176,14 @@ std::optional<FaceMesh> fill_strip(const FaceInput& face, const Strip& st, int d
   return r;
 }
 
-/// Faces with more nodes than this try the split, cut and pairs templates (O(n^3)) only when
-/// the structured templates gave nothing with a worst corner of kLargeFaceFloor or more (0.2
-/// cost 3.5x on the million-quad tray for the same mesh; 0.05 still catches a 0.007 grid).
+/// Faces with more nodes than kLargeFace try the split, cut and pairs templates (O(n^3)) only
+/// when the structured templates gave nothing with a worst corner of kLargeFaceFloor or more,
+/// and faces of more than kHugeFace nodes only below kHugeFaceFloor (0.2 for every size cost
+/// 4x in the quads stage of the million-quad tray; 0.05 still catches a 0.007 grid).
 constexpr std::size_t kLargeFace = 48;
-constexpr double kLargeFaceFloor = 0.05;
+constexpr double kLargeFaceFloor = 0.2;
+constexpr std::size_t kHugeFace = 128;
+constexpr double kHugeFaceFloor = 0.05;
 
 /// Templates' worst corners are compared in steps of this; any valid one beats every invalid.
 constexpr double kChoiceStep = 0.05;
@@ -1485,7 +1488,8 @@ std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
   if (consider(fill_arms(face, depth))) return best;
   if (consider(fill_ogrid(face))) return best;
   // The O(n^3) templates only for small faces, or when nothing structured gave valid quads.
-  const bool costly_ok = n <= kLargeFace || !best || best->min_jacobian < kLargeFaceFloor;
+  const bool costly_ok = n <= kLargeFace || !best ||
+                         best->min_jacobian < (n <= kHugeFace ? kLargeFaceFloor : kHugeFaceFloor);
   if (n >= 6 && costly_ok) {
     std::optional<FaceMesh> pick = pick_unstructured(face, true, consider);
     if (pick) return pick;
@@ -1503,13 +1507,23 @@ FaceMesh fill_face(const FaceInput& face, const std::string& where) {
                         " boundary nodes; a face needs an even number, at least 4");
   }
   const std::optional<FaceMesh> best = fill_any(face, 0);
+  static const bool debug = std::getenv("LAYTRACKS_DEBUG_FACE") != nullptr;
+  if (debug && best) {  // after its templates' lines: which face, what won, and its outline
+    std::ostringstream d;
+    d << "face: " << where << " n=" << n << " -> " << to_string(best->kind) << " " << best->min_jacobian << " sides:";
+    for (const FaceSide& side : face.sides)
+      d << " " << (side.kind == FaceSide::Kind::Rail ? "R" : "B") << side.edges << "@" << side.first;
+    d << " cycle:";
+    for (const Vec2& p : face.cycle) d << " (" << p.x << "," << p.y << ")";
+    std::fprintf(stderr, "%s\n", d.str().c_str());
+  }
   if (best && best->min_jacobian > kLastResortJacobian) return *best;
   std::ostringstream s;
   s << "mesher: no template gives valid quads in " << where << " (" << n
     << " boundary nodes, " << face.sides.size() << " sides";
   if (best) s << ", best corner scaled Jacobian " << best->min_jacobian;
   s << ")";
-  if (std::getenv("LAYTRACKS_DEBUG_FACE")) {
+  if (debug) {
     s << "\nsides:";
     for (const FaceSide& side : face.sides)
       s << " " << (side.kind == FaceSide::Kind::Rail ? "R" : "B") << side.edges << "@" << side.first;

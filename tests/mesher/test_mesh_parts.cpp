@@ -253,6 +253,17 @@ TEST_CASE("the rails of a large fillet do not all meet at its centre, in every p
   }
 }
 
+TEST_CASE("a large face whose structured fill is bad tries the unstructured templates",
+          "[mesh][face]") {
+  // cgal_wheel_16_spokes at half its size: each slot's tip (a corner of 350 degrees) lay on a
+  // 52-node face whose diamond fill made it one corner of 175 degrees (0.081); faces of more
+  // than 48 nodes tried split and cut only below 0.05. Now below 0.2 up to 128 nodes: 0.717.
+  RawPart raw = read_brep_json(cases_dir() + "/external/cgal_wheel_16_spokes.json");
+  REQUIRE(raw.mesh.size);
+  raw.mesh.size = *raw.mesh.size / 2.0;
+  check_three_poses(raw, 0.6);
+}
+
 TEST_CASE("breaks a hundredth of an element apart are one node", "[mesh][bridge]") {
   // Found by the stress generator: a plate with three holes at 3x its default size (two rails
   // landing 0.002 h apart on a hole left a face of 28 nodes no template could fill), and two
