@@ -39,6 +39,8 @@ const char* to_string(FillKind kind) {
       return "ogrid";
     case FillKind::Arms:
       return "arms";
+    case FillKind::Taper:
+      return "taper";
   }
   return "?";
 }
@@ -1176,6 +1178,137 @@ std::optional<FaceMesh> fill_strip(const FaceInput& face, const Strip& st, int d
   return r;
 }
 
+/// Taper: a strip whose caps differ by at least kTaperCaps edges (a corridor narrowing to a
+/// point, or much wider at one end). fill_strip would take the whole change of width, and of
+/// the rails' lengths, in one remainder. Here rows are laid from the wide cap along the
+/// rails, spreading both changes evenly over the rows: a row is plain (one rail edge on each
+/// side, the rung as wide as the one before), a narrowing (the rung two edges narrower: a
+/// three-to-one transition of four quads and two inner nodes in the middle of the row) or a
+/// shear (two edges of the longer rail, the rung one edge narrower: three quads round an
+/// inner node beside the extra rail node take the row's first or last two edges). Shears take min(rail difference, cap difference),
+/// narrowings the rest of the cap difference; a short remainder at the narrow cap takes what
+/// is left of the rails' difference by any other template.
+constexpr std::uint32_t kTaperCaps = 4;
+
+std::optional<FaceMesh> fill_taper(const FaceInput& face, const Strip& st, int depth) {
+  if (depth > 1 || st.cap1.size() < 2 || st.cap2.size() < 2) return std::nullopt;
+  const auto a = static_cast<std::uint32_t>(st.cap1.size() - 1);
+  const auto c = static_cast<std::uint32_t>(st.cap2.size() - 1);
+  const auto n1 = static_cast<std::uint32_t>(st.rail1.size() - 1);
+  const auto n2 = static_cast<std::uint32_t>(st.rail2.size() - 1);
+  const bool from_cap1 = a >= c;
+  const std::uint32_t wide = std::max(a, c), narrow = std::min(a, c);
+  if (wide < narrow + kTaperCaps) return std::nullopt;
+  // Rung k joins from(kf) to to(kt), kf and kt counted along their rails from the wide cap,
+  // as fill_strip's rungs from that cap. `from` runs along rail2 from cap1, rail1 from cap2.
+  const std::uint32_t nf = from_cap1 ? n2 : n1, nt = from_cap1 ? n1 : n2;
+  const auto from = [&](std::uint32_t k) { return from_cap1 ? st.rail2[n2 - k] : st.rail1[n1 - k]; };
+  const auto to = [&](std::uint32_t k) { return from_cap1 ? st.rail1[k] : st.rail2[k]; };
+  const std::uint32_t diff = nf > nt ? nf - nt : nt - nf;
+  const std::uint32_t shears = std::min(diff, wide - narrow);
+  if ((wide - narrow - shears) % 2 != 0) return std::nullopt;  // cannot happen: even cycle
+  const std::uint32_t narrowings = (wide - narrow - shears) / 2;
+  const std::uint32_t events = shears + narrowings;
+  const std::uint32_t keep = std::max({narrow, diff - shears, 2u});
+  const std::uint32_t lo = std::min(nf, nt);
+  if (lo <= keep || lo - keep < 2 * events) return std::nullopt;
+  const std::uint32_t rows = lo - keep;
+  Builder m(face, FillKind::Taper);
+  std::vector<std::uint32_t> prev = from_cap1 ? st.cap1 : st.cap2, rung;
+  std::uint32_t kf = 0, kt = 0, done = 0, sheared = 0;
+  for (std::uint32_t k = 1; k <= rows; ++k) {
+    const auto pw = static_cast<std::uint32_t>(prev.size() - 1);
+    // Event i in row floor((i + 1/2) rows / events) + 1; shears spread among them alike.
+    const bool event = done < events && 2 * (k - 1) * events >= (2 * done + 1) * rows;
+    const bool shear = event && (done + 1) * shears / events > sheared;
+    const bool shear_from = shear && nf > nt;
+    const bool shear_to = shear && !shear_from;
+    const std::uint32_t cw = !event ? pw : shear ? pw - 1 : pw - 2;
+    const std::uint32_t xf = kf + 1, xt = kt + 1;  // the extra rail node of a shear
+    kf += shear_from ? 2 : 1;
+    kt += shear_to ? 2 : 1;
+    rung.assign(cw + 1, 0);
+    rung.front() = from(kf);
+    rung.back() = to(kt);
+    for (std::uint32_t i = 1; i < cw; ++i)
+      rung[i] = m.add(lerp(m.pos(rung.front()), m.pos(rung.back()), static_cast<double>(i) / cw));
+    if (!event) {
+      for (std::uint32_t i = 0; i < pw; ++i) m.quad(prev[i], prev[i + 1], rung[i + 1], rung[i]);
+    } else if (shear_from) {
+      // The extra rail node x is no flat corner: an inner node y beside it takes two quads.
+      const std::uint32_t x = from(xf);
+      const std::uint32_t y = m.add(lerp(m.pos(x), lerp(m.pos(prev[1]), m.pos(rung[1]), 0.5), 0.5));
+      m.quad(prev[0], prev[1], y, x);
+      m.quad(x, y, rung[1], rung[0]);
+      m.quad(prev[1], prev[2], rung[1], y);
+      for (std::uint32_t i = 2; i < pw; ++i) m.quad(prev[i], prev[i + 1], rung[i], rung[i - 1]);
+    } else if (shear_to) {
+      const std::uint32_t x = to(xt);
+      const std::uint32_t y =
+          m.add(lerp(m.pos(x), lerp(m.pos(prev[pw - 1]), m.pos(rung[pw - 2]), 0.5), 0.5));
+      for (std::uint32_t i = 0; i + 2 < pw; ++i) m.quad(prev[i], prev[i + 1], rung[i + 1], rung[i]);
+      m.quad(prev[pw - 2], prev[pw - 1], y, rung[pw - 2]);
+      m.quad(prev[pw - 1], prev[pw], x, y);
+      m.quad(y, x, rung[pw - 1], rung[pw - 2]);
+    } else {
+      const std::uint32_t j = (pw - 3) / 2;
+      for (std::uint32_t i = 0; i < j; ++i) m.quad(prev[i], prev[i + 1], rung[i + 1], rung[i]);
+      const std::uint32_t p0 = prev[j], p1 = prev[j + 1], p2 = prev[j + 2], p3 = prev[j + 3];
+      const std::uint32_t q0 = rung[j], q1 = rung[j + 1];
+      const std::uint32_t m1 = m.add(0.5 * (m.pos(p1) + lerp(m.pos(q0), m.pos(q1), 1.0 / 3.0)));
+      const std::uint32_t m2 = m.add(0.5 * (m.pos(p2) + lerp(m.pos(q0), m.pos(q1), 2.0 / 3.0)));
+      m.quad(p0, p1, m1, q0);
+      m.quad(p1, p2, m2, m1);
+      m.quad(p2, p3, q1, m2);
+      m.quad(m1, m2, q1, q0);
+      for (std::uint32_t i = j + 3; i < pw; ++i) m.quad(prev[i], prev[i + 1], rung[i - 1], rung[i - 2]);
+    }
+    if (event) ++done;
+    if (shear) ++sheared;
+    prev = rung;
+  }
+  if (done != events || kf > nf - 2 || kt > nt - 2) return std::nullopt;
+  // The remainder, counter-clockwise, as fill_strip's: two boundary sides (the last rung and
+  // the narrow cap) and the rest of the rails.
+  FaceInput rest;
+  std::vector<std::uint32_t> ids;
+  auto push = [&](std::uint32_t id) {
+    ids.push_back(id);
+    rest.cycle.push_back(m.pos(id));
+  };
+  auto side = [&](FaceSide::Kind kind, std::uint32_t edges, const std::vector<std::uint32_t>& joints,
+                  std::uint32_t shift) {
+    FaceSide sd;
+    sd.kind = kind;
+    sd.first = static_cast<std::uint32_t>(ids.size());
+    sd.edges = edges;
+    for (std::uint32_t jt : joints)
+      if (jt > shift && jt < shift + edges) sd.joints.push_back(jt - shift);
+    rest.sides.push_back(sd);
+  };
+  const std::vector<std::uint32_t>& cap1 = from_cap1 ? prev : st.cap1;
+  const std::vector<std::uint32_t>& cap2 = from_cap1 ? st.cap2 : prev;
+  // rail1 runs from cap1 to cap2: from cap1 it is `to` (kt rows used at its start), from
+  // cap2 it is `from` (kf used at its end); rail2 likewise.
+  const std::uint32_t s1 = from_cap1 ? kt : 0, e1 = from_cap1 ? n1 : n1 - kf;
+  const std::uint32_t s2 = from_cap1 ? 0 : kt, e2 = from_cap1 ? n2 - kf : n2;
+  side(FaceSide::Kind::Boundary, static_cast<std::uint32_t>(cap1.size() - 1), {}, 0);
+  for (std::size_t i = 0; i + 1 < cap1.size(); ++i) push(cap1[i]);
+  side(FaceSide::Kind::Rail, e1 - s1, st.joints1, s1);
+  for (std::uint32_t k = s1; k < e1; ++k) push(st.rail1[k]);
+  side(FaceSide::Kind::Boundary, static_cast<std::uint32_t>(cap2.size() - 1), {}, 0);
+  for (std::size_t i = 0; i + 1 < cap2.size(); ++i) push(cap2[i]);
+  side(FaceSide::Kind::Rail, e2 - s2, st.joints2, s2);
+  for (std::uint32_t k = s2; k < e2; ++k) push(st.rail2[k]);
+  if (rest.cycle.size() < 4 || rest.cycle.size() % 2 != 0) return std::nullopt;
+  const std::optional<FaceMesh> sub = fill_any(rest, depth + 1);
+  if (!sub) return std::nullopt;
+  m.embed(*sub, ids);
+  FaceMesh r = m.finish();
+  if (r.min_jacobian < kAcceptJacobian) relax(r, face, 30);
+  return r;
+}
+
 /// Faces with more nodes than kLargeFace try the split, cut and pairs templates (O(n^3)) only
 /// when the structured templates gave nothing with a worst corner of kLargeFaceFloor or more,
 /// and faces of more than kHugeFace nodes only below kHugeFaceFloor (0.2 for every size cost
@@ -1482,6 +1615,8 @@ std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
     if (consider(fill_rows(face, st, depth))) return best;
   for (const Strip& st : strips)
     if (consider(fill_strip(face, st, depth))) return best;
+  for (const Strip& st : strips)
+    if (consider(fill_taper(face, st, depth))) return best;
   // Read by its corners instead of its sides (a face whose rails bend, or a remainder).
   for (FaceMesh& g : corner_grids(face))
     if (consider(std::move(g))) return best;

@@ -42,6 +42,7 @@ enum class FillKind : std::uint8_t {
   Strip,    ///< a long strip whose caps or rails differ: rows from both caps, a short remainder
   Ogrid,    ///< a round face: a rectangle of quads in the middle, rings of quads round it
   Arms,     ///< a junction of three or more arms: rows from each arm's cap, the rest inside
+  Taper,    ///< a strip whose caps differ by 4 edges or more: rows narrowing step by step
 };
 const char* to_string(FillKind kind);
 

@@ -264,3 +264,33 @@ TEST_CASE("a junction of three long narrow arms gets rows along each arm, not sp
       longest = std::max(longest, norm(pos(q[k]) - pos(q[(k + 1) % 4])));
   CHECK(longest < 10.0 / 7.0);
 }
+
+TEST_CASE("a corridor narrowing to a point gets rows narrowing step by step", "[fill][taper]") {
+  // Caps of 28 edges and 1 edge, rails of 140 and 143 edges (edges of 1/7): the strip
+  // template put the whole change of width into one remainder (the tray at 950,000 quads had
+  // such faces at 0.04 to 0.2). Turned, the same.
+  for (double turn : {0.0, 2.0}) {
+    CAPTURE(turn);
+    const Vec2 ex{std::cos(turn), std::sin(turn)}, ey{-std::sin(turn), std::cos(turn)};
+    const auto at = [&](double x, double y) { return x * ex + y * ey; };
+    FaceInput f;
+    auto run = [&](FaceSide::Kind kind, Vec2 a, Vec2 b, int steps) {
+      FaceSide side;
+      side.kind = kind;
+      side.first = static_cast<std::uint32_t>(f.cycle.size());
+      side.edges = static_cast<std::uint32_t>(steps);
+      for (int k = 0; k < steps; ++k)
+        f.cycle.push_back(a + (static_cast<double>(k) / steps) * (b - a));
+      f.sides.push_back(side);
+    };
+    using K = FaceSide::Kind;
+    run(K::Boundary, at(0, 0), at(4, 0), 28);
+    run(K::Rail, at(4, 0), at(4, 20), 140);
+    run(K::Boundary, at(4, 20), at(3.86, 20), 1);
+    run(K::Rail, at(3.86, 20), at(0, 0), 143);
+    const FaceMesh m = fill_face(f, "the taper");
+    CHECK(std::string(to_string(m.kind)) == "taper");
+    check_fill(f, m);
+    CHECK(m.min_jacobian > 0.35);  // 0.416; the strip template gave 0.153
+  }
+}
