@@ -148,16 +148,17 @@ CutGraph build_cut_graph(const Part& part,
   std::vector<Vec3> suppressed;
   const TrackWidthLaw* law = options.adaptive;
   const bool tracks = options.track_width > 0.0 || law;
+  // The track width at a medial radius (adaptive: the width a track would have there with
+  // Delta theta_in alone); none when no tracks are laid.
+  std::function<double(double)> track_width;
+  if (tracks)
+    track_width = [&](double radius) { return law ? law->width_for(radius, 1.0) : options.track_width; };
   if (tracks && options.narrow_fraction > 0.0) {
-    const auto min_width = [&](double radius) {
-      // Adaptive: the width a track would have at the branch point (Delta theta_in alone).
-      return options.narrow_fraction *
-             (law ? law->width_for(radius, 1.0) : options.track_width);
-    };
-    cutgraph_detail::remove_narrow_corridors(part, axes, min_width, suppressed, graph.deleted,
-                                             graph.narrow_kept);
+    const auto min_width = [&](double radius) { return options.narrow_fraction * track_width(radius); };
+    cutgraph_detail::remove_narrow_corridors(part, axes, min_width, track_width, suppressed,
+                                             graph.deleted, graph.narrow_kept);
   }
-  cutgraph_detail::RailLayer layer(part, axes, graph);
+  cutgraph_detail::RailLayer layer(part, axes, graph, track_width);
   layer.suppress(suppressed);
   layer.lay_sources();
   const auto count = [&] {

@@ -26,9 +26,10 @@ struct Round {
 
 Round lay_round(const Part& part,
                 const std::vector<MedialAxis>& axes,
+                const std::function<double(double)>& track_width,
                 const std::vector<Vec3>& suppressed) {
   Round r;
-  RailLayer layer(part, axes, r.graph);
+  RailLayer layer(part, axes, r.graph, track_width);
   layer.suppress(suppressed);
   layer.lay_sources();
   r.links = layer.links();
@@ -50,6 +51,7 @@ bool at_corner(const Part& part, const BoundaryIndex& index, const GCutVert& g) 
 void remove_narrow_corridors(const Part& part,
                              const std::vector<MedialAxis>& axes,
                              const std::function<double(double)>& min_width,
+                             const std::function<double(double)>& track_width,
                              std::vector<Vec3>& suppressed,
                              std::vector<DeletedRail>& deleted,
                              std::size_t& kept) {
@@ -58,7 +60,7 @@ void remove_narrow_corridors(const Part& part,
   // narrowest corridors first, so that a group of adjacent narrow corridors merges until the
   // width holds. Bounded by the number of source points.
   for (std::size_t round = 0; round < 100000; ++round) {
-    const Round r = lay_round(part, axes, suppressed);
+    const Round r = lay_round(part, axes, track_width, suppressed);
     const CutGraph& g = r.graph;
     // Rails joined through boundary points (not through MA nodes or corners) form one set.
     UnionFind uf(g.gverts.size());

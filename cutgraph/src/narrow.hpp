@@ -15,6 +15,7 @@ namespace laytracks::cutgraph_detail {
 void remove_narrow_corridors(const Part& part,
                              const std::vector<MedialAxis>& axes,
                              const std::function<double(double)>& min_width,
+                             const std::function<double(double)>& track_width,
                              std::vector<Vec3>& suppressed,
                              std::vector<DeletedRail>& deleted,
                              std::size_t& kept);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <functional>
 #include <map>
 #include <sstream>
 
@@ -35,13 +36,22 @@ constexpr double kLoopCloseRel = 0.25;
 /// on it (leaning by at most 3 degrees): two rails that coincide on the exact part (a drafted
 /// wall's corner rail and the floor's) would leave a sliver corridor between them.
 constexpr double kCoincideRel = 0.05;
+/// ... and within this x the track width there (when tracks are laid): at a third of
+/// open_box's size its tracks (0.167) were closer than 0.05 x its walls' radius (0.3), and a
+/// track rail landing between two others' points took whichever rounding made nearer, so the
+/// box got 6959, 7038 or 7115 quads by pose.
+constexpr double kCoincideTrack = 0.25;
 
 class RailLayer {
  public:
-  RailLayer(const Part& part, const std::vector<MedialAxis>& axes, CutGraph& graph)
+  /// `track_width(radius)`: the track width at a medial radius, when tracks are laid (it bounds
+  /// the landing merges, kCoincideTrack); empty when only source rails are.
+  RailLayer(const Part& part, const std::vector<MedialAxis>& axes, CutGraph& graph,
+            std::function<double(double)> track_width = {})
       : part_(part),
         axes_(axes),
         g_(graph),
+        track_width_(std::move(track_width)),
         index_(part),
         registry_(part, kSamePointRel * part.size),
         max_hops_(static_cast<std::uint32_t>(kMaxHopsPerPatch * part.patches.size() + kMaxHopsExtra)) {}
@@ -269,7 +279,7 @@ class RailLayer {
         double d = 0.0;
         const GCutId near = registry_.nearest_if(
             te, tt, [&](GCutId x) { return !g_.gverts[x.index()].vertex; }, &d);
-        if (near.valid() && d > registry_tolerance() && d <= kCoincideRel * m->radius) {
+        if (near.valid() && d > registry_tolerance() && d <= coincide_limit(m->radius)) {
           g2 = near;
           gap = d;
           ++g_.rail_merges;
@@ -388,6 +398,12 @@ class RailLayer {
   }
   double registry_tolerance() const { return kSamePointRel * part_.size; }
 
+  /// How close to another chain's point a rail landing at medial radius r lands on it.
+  double coincide_limit(double r) const {
+    const double limit = kCoincideRel * r;
+    return track_width_ ? std::min(limit, kCoincideTrack * track_width_(r)) : limit;
+  }
+
   bool is_suppressed(Vec3 x) const {
     const double tol = registry_tolerance();
     return std::any_of(suppressed_.begin(), suppressed_.end(),
@@ -397,6 +413,7 @@ class RailLayer {
   const Part& part_;
   const std::vector<MedialAxis>& axes_;
   CutGraph& g_;
+  std::function<double(double)> track_width_;
   BoundaryIndex index_;
   GCutRegistry registry_;
   std::uint32_t max_hops_;

@@ -264,6 +264,17 @@ TEST_CASE("a large face whose structured fill is bad tries the unstructured temp
   check_three_poses(raw, 0.6);
 }
 
+TEST_CASE("rails land on another chain's point only within a quarter track", "[mesh][pose]") {
+  // open_box at a third of its size: tracks 0.167 apart, closer than 0.05 x its walls' medial
+  // radius (kCoincideRel: 0.3), so a track rail landing between two others' points took
+  // whichever rounding made nearer: 6959, 7038 or 7115 quads by pose, worst 0.70-0.74. Within
+  // a quarter track (kCoincideTrack) only: the same count in every pose, all square.
+  RawPart raw = read_brep_json(cases_dir() + "/open_box.json");
+  REQUIRE(raw.mesh.size);
+  raw.mesh.size = *raw.mesh.size / 3.0;
+  check_three_poses(raw, 0.95);
+}
+
 TEST_CASE("breaks a hundredth of an element apart are one node", "[mesh][bridge]") {
   // Found by the stress generator: a plate with three holes at 3x its default size (two rails
   // landing 0.002 h apart on a hole left a face of 28 nodes no template could fill), and two
