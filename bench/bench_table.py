@@ -82,7 +82,22 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("files", nargs="+")
     ap.add_argument("--stages", action="store_true")
+    ap.add_argument("--commands", action="store_true")
     args = ap.parse_args()
+    if args.commands:
+        print("| part | quads | `laytracks mesh` [s] | Gmsh quads | `gmsh -2` [s] | Gmsh / ours |")
+        print("|---|---:|---:|---:|---:|---:|")
+        for path in args.files:
+            with open(path) as f:
+                doc = json.load(f)
+            for row in doc["rows"]:
+                c = row["gmsh"].get("commands")
+                if not c:
+                    continue
+                print("| %s | {:,} | %.3f | {:,} | %.3f | %.1f |".format(
+                    row["ours"]["quads"], row["gmsh"]["quads"]) %
+                      (name_of(doc["part"]), c["ours"], c["gmsh"], c["gmsh"] / c["ours"]))
+        return 0
     if args.stages:
         print("| part | h | quads | medial | rails | quads | refill | smooth | check | total [s] | cpu [s] "
               "| quads/s | Gmsh quads | Gmsh lc | Gmsh 1D+2D [s] | Gmsh cpu [s] | Gmsh command [s] "
