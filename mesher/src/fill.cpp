@@ -1098,6 +1098,44 @@ std::optional<FaceMesh> fill_rows(const FaceInput& face, const Strip& st, int de
   return best;
 }
 
+/// The rest of a strip once rows are laid from its caps: the last rung from cap1 (`end1`,
+/// counter-clockwise from rail2 to rail1), rail1[s1, e1), the last rung from cap2 (`end2`),
+/// rail2[s2, e2), read as boundary, rail, boundary, rail; filled by any template and embedded
+/// in m. False when no template fills it.
+bool fill_remainder(Builder& m, const Strip& st, const std::vector<std::uint32_t>& end1,
+                    std::uint32_t s1, std::uint32_t e1, const std::vector<std::uint32_t>& end2,
+                    std::uint32_t s2, std::uint32_t e2, int depth) {
+  FaceInput rest;
+  std::vector<std::uint32_t> ids;
+  auto side = [&](FaceSide::Kind kind, std::uint32_t edges, const std::vector<std::uint32_t>& joints,
+                  std::uint32_t shift) {
+    FaceSide sd;
+    sd.kind = kind;
+    sd.first = static_cast<std::uint32_t>(ids.size());
+    sd.edges = edges;
+    for (std::uint32_t j : joints)
+      if (j > shift && j < shift + edges) sd.joints.push_back(j - shift);
+    rest.sides.push_back(sd);
+  };
+  auto push = [&](std::uint32_t id) {
+    ids.push_back(id);
+    rest.cycle.push_back(m.pos(id));
+  };
+  side(FaceSide::Kind::Boundary, static_cast<std::uint32_t>(end1.size() - 1), {}, 0);
+  for (std::size_t i = 0; i + 1 < end1.size(); ++i) push(end1[i]);
+  side(FaceSide::Kind::Rail, e1 - s1, st.joints1, s1);
+  for (std::uint32_t k = s1; k < e1; ++k) push(st.rail1[k]);
+  side(FaceSide::Kind::Boundary, static_cast<std::uint32_t>(end2.size() - 1), {}, 0);
+  for (std::size_t i = 0; i + 1 < end2.size(); ++i) push(end2[i]);
+  side(FaceSide::Kind::Rail, e2 - s2, st.joints2, s2);
+  for (std::uint32_t k = s2; k < e2; ++k) push(st.rail2[k]);
+  if (rest.cycle.size() < 4 || rest.cycle.size() % 2 != 0) return false;
+  const std::optional<FaceMesh> sub = fill_any(rest, depth + 1);
+  if (!sub) return false;
+  m.embed(*sub, ids);
+  return true;
+}
+
 /// Strip: a long face between two rails whose caps or rails do not match (so no grid): rows
 /// of cap1's width laid from cap1 and rows of cap2's width from cap2 along the rails, straight
 /// rungs across, until a short remainder in the middle (its rails about as long as the strip
@@ -1144,35 +1182,8 @@ std::optional<FaceMesh> fill_strip(const FaceInput& face, const Strip& st, int d
   const std::vector<std::uint32_t> end2 = lay_rows(
       st.cap2, r2, [&](std::uint32_t k) { return st.rail1[n1 - k]; },
       [&](std::uint32_t k) { return st.rail2[k]; });
-  // The remainder, counter-clockwise: end1, rail1 from r1 to n1 - r2, end2, rail2 from r2 to
-  // n2 - r1; its sides a boundary (the rung), a rail, a boundary, a rail.
-  FaceInput rest;
-  std::vector<std::uint32_t> ids;
-  auto push = [&](std::uint32_t id) {
-    ids.push_back(id);
-    rest.cycle.push_back(m.pos(id));
-  };
-  auto side = [&](FaceSide::Kind kind, std::uint32_t edges, const std::vector<std::uint32_t>& joints,
-                  std::uint32_t shift) {
-    FaceSide sd;
-    sd.kind = kind;
-    sd.first = static_cast<std::uint32_t>(ids.size());
-    sd.edges = edges;
-    for (std::uint32_t j : joints)
-      if (j > shift && j < shift + edges) sd.joints.push_back(j - shift);
-    rest.sides.push_back(sd);
-  };
-  side(FaceSide::Kind::Boundary, a, {}, 0);
-  for (std::size_t i = 0; i < a; ++i) push(end1[i]);
-  side(FaceSide::Kind::Rail, n1 - r1 - r2, st.joints1, r1);
-  for (std::uint32_t k = r1; k < n1 - r2; ++k) push(st.rail1[k]);
-  side(FaceSide::Kind::Boundary, c, {}, 0);
-  for (std::size_t i = 0; i < c; ++i) push(end2[i]);
-  side(FaceSide::Kind::Rail, n2 - r1 - r2, st.joints2, r2);
-  for (std::uint32_t k = r2; k < n2 - r1; ++k) push(st.rail2[k]);
-  const std::optional<FaceMesh> sub = fill_any(rest, depth + 1);
-  if (!sub) return std::nullopt;
-  m.embed(*sub, ids);
+  // The remainder: end1, rail1 from r1 to n1 - r2, end2, rail2 from r2 to n2 - r1.
+  if (!fill_remainder(m, st, end1, r1, n1 - r2, end2, r2, n2 - r1, depth)) return std::nullopt;
   FaceMesh r = m.finish();
   if (r.min_jacobian < kAcceptJacobian) relax(r, face, 30);
   return r;
@@ -1185,9 +1196,10 @@ std::optional<FaceMesh> fill_strip(const FaceInput& face, const Strip& st, int d
 /// side, the rung as wide as the one before), a narrowing (the rung two edges narrower: a
 /// three-to-one transition of four quads and two inner nodes in the middle of the row) or a
 /// shear (two edges of the longer rail, the rung one edge narrower: three quads round an
-/// inner node beside the extra rail node take the row's first or last two edges). Shears take min(rail difference, cap difference),
-/// narrowings the rest of the cap difference; a short remainder at the narrow cap takes what
-/// is left of the rails' difference by any other template.
+/// inner node beside the extra rail node take the row's first or last two edges). Shears take
+/// min(rail difference, cap difference), narrowings the rest of the cap difference; a short
+/// remainder at the narrow cap takes what is left of the rails' difference by any other
+/// template.
 constexpr std::uint32_t kTaperCaps = 4;
 
 std::optional<FaceMesh> fill_taper(const FaceInput& face, const Strip& st, int depth) {
@@ -1268,42 +1280,14 @@ std::optional<FaceMesh> fill_taper(const FaceInput& face, const Strip& st, int d
     prev = rung;
   }
   if (done != events || kf > nf - 2 || kt > nt - 2) return std::nullopt;
-  // The remainder, counter-clockwise, as fill_strip's: two boundary sides (the last rung and
-  // the narrow cap) and the rest of the rails.
-  FaceInput rest;
-  std::vector<std::uint32_t> ids;
-  auto push = [&](std::uint32_t id) {
-    ids.push_back(id);
-    rest.cycle.push_back(m.pos(id));
-  };
-  auto side = [&](FaceSide::Kind kind, std::uint32_t edges, const std::vector<std::uint32_t>& joints,
-                  std::uint32_t shift) {
-    FaceSide sd;
-    sd.kind = kind;
-    sd.first = static_cast<std::uint32_t>(ids.size());
-    sd.edges = edges;
-    for (std::uint32_t jt : joints)
-      if (jt > shift && jt < shift + edges) sd.joints.push_back(jt - shift);
-    rest.sides.push_back(sd);
-  };
-  const std::vector<std::uint32_t>& cap1 = from_cap1 ? prev : st.cap1;
-  const std::vector<std::uint32_t>& cap2 = from_cap1 ? st.cap2 : prev;
-  // rail1 runs from cap1 to cap2: from cap1 it is `to` (kt rows used at its start), from
-  // cap2 it is `from` (kf used at its end); rail2 likewise.
+  // The remainder, as fill_strip's: the last rung and the narrow cap, and the rest of the
+  // rails. rail1 runs from cap1 to cap2: from cap1 it is `to` (kt edges used at its start),
+  // from cap2 it is `from` (kf used at its end); rail2 likewise.
   const std::uint32_t s1 = from_cap1 ? kt : 0, e1 = from_cap1 ? n1 : n1 - kf;
   const std::uint32_t s2 = from_cap1 ? 0 : kt, e2 = from_cap1 ? n2 - kf : n2;
-  side(FaceSide::Kind::Boundary, static_cast<std::uint32_t>(cap1.size() - 1), {}, 0);
-  for (std::size_t i = 0; i + 1 < cap1.size(); ++i) push(cap1[i]);
-  side(FaceSide::Kind::Rail, e1 - s1, st.joints1, s1);
-  for (std::uint32_t k = s1; k < e1; ++k) push(st.rail1[k]);
-  side(FaceSide::Kind::Boundary, static_cast<std::uint32_t>(cap2.size() - 1), {}, 0);
-  for (std::size_t i = 0; i + 1 < cap2.size(); ++i) push(cap2[i]);
-  side(FaceSide::Kind::Rail, e2 - s2, st.joints2, s2);
-  for (std::uint32_t k = s2; k < e2; ++k) push(st.rail2[k]);
-  if (rest.cycle.size() < 4 || rest.cycle.size() % 2 != 0) return std::nullopt;
-  const std::optional<FaceMesh> sub = fill_any(rest, depth + 1);
-  if (!sub) return std::nullopt;
-  m.embed(*sub, ids);
+  if (!fill_remainder(m, st, from_cap1 ? prev : st.cap1, s1, e1, from_cap1 ? st.cap2 : prev, s2,
+                      e2, depth))
+    return std::nullopt;
   FaceMesh r = m.finish();
   if (r.min_jacobian < kAcceptJacobian) relax(r, face, 30);
   return r;
