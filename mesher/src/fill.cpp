@@ -1627,13 +1627,18 @@ FaceMesh fill_face(const FaceInput& face, const std::string& where) {
   }
   const std::optional<FaceMesh> best = fill_any(face, 0);
   static const bool debug = std::getenv("LAYTRACKS_DEBUG_FACE") != nullptr;
+  // The face's sides (R rail, B boundary: edges @ first node) and cycle, for debugging.
+  const auto outline = [&](std::ostream& o, const char* gap) {
+    o << gap << "sides:";
+    for (const FaceSide& side : face.sides)
+      o << " " << (side.kind == FaceSide::Kind::Rail ? "R" : "B") << side.edges << "@" << side.first;
+    o << gap << "cycle:";
+    for (const Vec2& p : face.cycle) o << " (" << p.x << "," << p.y << ")";
+  };
   if (debug && best) {  // after its templates' lines: which face, what won, and its outline
     std::ostringstream d;
-    d << "face: " << where << " n=" << n << " -> " << to_string(best->kind) << " " << best->min_jacobian << " sides:";
-    for (const FaceSide& side : face.sides)
-      d << " " << (side.kind == FaceSide::Kind::Rail ? "R" : "B") << side.edges << "@" << side.first;
-    d << " cycle:";
-    for (const Vec2& p : face.cycle) d << " (" << p.x << "," << p.y << ")";
+    d << "face: " << where << " n=" << n << " -> " << to_string(best->kind) << " " << best->min_jacobian;
+    outline(d, " ");
     std::fprintf(stderr, "%s\n", d.str().c_str());
   }
   if (best && best->min_jacobian > kLastResortJacobian) return *best;
@@ -1642,13 +1647,7 @@ FaceMesh fill_face(const FaceInput& face, const std::string& where) {
     << " boundary nodes, " << face.sides.size() << " sides";
   if (best) s << ", best corner scaled Jacobian " << best->min_jacobian;
   s << ")";
-  if (debug) {
-    s << "\nsides:";
-    for (const FaceSide& side : face.sides)
-      s << " " << (side.kind == FaceSide::Kind::Rail ? "R" : "B") << side.edges << "@" << side.first;
-    s << "\ncycle:";
-    for (const Vec2& p : face.cycle) s << " (" << p.x << "," << p.y << ")";
-  }
+  if (debug) outline(s, "\n");
   throw InternalError(s.str());
 }
 
