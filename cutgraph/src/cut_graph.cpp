@@ -154,9 +154,8 @@ CutGraph build_cut_graph(const Part& part,
   if (tracks)
     track_width = [&](double radius) { return law ? law->width_for(radius, 1.0) : options.track_width; };
   if (tracks && options.narrow_fraction > 0.0) {
-    const auto min_width = [&](double radius) { return options.narrow_fraction * track_width(radius); };
-    cutgraph_detail::remove_narrow_corridors(part, axes, min_width, track_width, suppressed,
-                                             graph.deleted, graph.narrow_kept);
+    cutgraph_detail::remove_narrow_corridors(part, axes, track_width, options.narrow_fraction,
+                                             suppressed, graph.deleted, graph.narrow_kept);
   }
   cutgraph_detail::RailLayer layer(part, axes, graph, track_width);
   layer.suppress(suppressed);

@@ -50,8 +50,8 @@ bool at_corner(const Part& part, const BoundaryIndex& index, const GCutVert& g) 
 
 void remove_narrow_corridors(const Part& part,
                              const std::vector<MedialAxis>& axes,
-                             const std::function<double(double)>& min_width,
                              const std::function<double(double)>& track_width,
+                             double narrow_fraction,
                              std::vector<Vec3>& suppressed,
                              std::vector<DeletedRail>& deleted,
                              std::size_t& kept) {
@@ -129,7 +129,7 @@ void remove_narrow_corridors(const Part& part,
     const auto quantum = [&](double x) { return std::llround(x / grain); };
     std::vector<std::pair<long long, std::size_t>> order;
     for (const auto& [corridor, w] : width) {
-      if (quantum(w) < quantum(min_width(radius[corridor])))
+      if (quantum(w) < quantum(narrow_fraction * track_width(radius[corridor])))
         order.push_back({quantum(w), corridor});
     }
     std::sort(order.begin(), order.end());

@@ -1147,7 +1147,8 @@ class QuadBuilder {
     // The faces are filled on all cores (a face's fill reads only its own input); their nodes
     // and quads are added in face order, so the mesh is the same as filled one by one.
     std::vector<FaceMesh> filled(pending.size());
-    parallel_for(pending.size(), [&](std::size_t f) { filled[f] = fill_face(pending[f].in, pending[f].where); });
+    parallel_for(pending.size(),
+                 [&](std::size_t f) { filled[f] = fill_face(pending[f].in, pending[f].where); });
     for (std::size_t f = 0; f < pending.size(); ++f) {
       const FaceMesh& fm = filled[f];
       ++result_.stats.faces;

@@ -85,8 +85,7 @@ class PatchRefill {
       const std::size_t count = std::min(batch, bad.size() - first);
       std::vector<Attempt> tries(count);
       const auto evaluate = [&](std::size_t i) { tries[i] = attempt(bad[first + i].second); };
-      if (count > 1) parallel_for(count, evaluate);
-      else evaluate(0);
+      parallel_for(count, evaluate);
       ++batch_id_;
       bool wrote = false;
       for (std::size_t i = 0; i < count; ++i) {
@@ -440,8 +439,8 @@ std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations, do
   };
   std::vector<Result> results(part.patches.size());
   // With fewer patches than cores, each patch's attempts run in parallel instead.
-  std::size_t busy = 0;
-  for (const auto& e : by_patch) if (!e.empty()) ++busy;
+  const auto busy = static_cast<std::size_t>(std::count_if(
+      by_patch.begin(), by_patch.end(), [](const auto& e) { return !e.empty(); }));
   const bool inner = busy < worker_threads();
   parallel_for(part.patches.size(), [&](std::size_t p) {
     Result& r = results[p];

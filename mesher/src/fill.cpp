@@ -1214,7 +1214,9 @@ std::optional<FaceMesh> fill_taper(const FaceInput& face, const Strip& st, int d
   // Rung k joins from(kf) to to(kt), kf and kt counted along their rails from the wide cap,
   // as fill_strip's rungs from that cap. `from` runs along rail2 from cap1, rail1 from cap2.
   const std::uint32_t nf = from_cap1 ? n2 : n1, nt = from_cap1 ? n1 : n2;
-  const auto from = [&](std::uint32_t k) { return from_cap1 ? st.rail2[n2 - k] : st.rail1[n1 - k]; };
+  const auto from = [&](std::uint32_t k) {
+    return from_cap1 ? st.rail2[n2 - k] : st.rail1[n1 - k];
+  };
   const auto to = [&](std::uint32_t k) { return from_cap1 ? st.rail1[k] : st.rail2[k]; };
   const std::uint32_t diff = nf > nt ? nf - nt : nt - nf;
   const std::uint32_t shears = std::min(diff, wide - narrow);
@@ -1227,6 +1229,11 @@ std::optional<FaceMesh> fill_taper(const FaceInput& face, const Strip& st, int d
   const std::uint32_t rows = lo - keep;
   Builder m(face, FillKind::Taper);
   std::vector<std::uint32_t> prev = from_cap1 ? st.cap1 : st.cap2, rung;
+  // Quads between prev's edges i in [i0, i1) and the rung's edges `shift` places before them.
+  const auto row = [&](std::uint32_t i0, std::uint32_t i1, std::uint32_t shift) {
+    for (std::uint32_t i = i0; i < i1; ++i)
+      m.quad(prev[i], prev[i + 1], rung[i + 1 - shift], rung[i - shift]);
+  };
   std::uint32_t kf = 0, kt = 0, done = 0, sheared = 0;
   for (std::uint32_t k = 1; k <= rows; ++k) {
     const auto pw = static_cast<std::uint32_t>(prev.size() - 1);
@@ -1245,26 +1252,27 @@ std::optional<FaceMesh> fill_taper(const FaceInput& face, const Strip& st, int d
     for (std::uint32_t i = 1; i < cw; ++i)
       rung[i] = m.add(lerp(m.pos(rung.front()), m.pos(rung.back()), static_cast<double>(i) / cw));
     if (!event) {
-      for (std::uint32_t i = 0; i < pw; ++i) m.quad(prev[i], prev[i + 1], rung[i + 1], rung[i]);
+      row(0, pw, 0);
     } else if (shear_from) {
       // The extra rail node x is no flat corner: an inner node y beside it takes two quads.
       const std::uint32_t x = from(xf);
-      const std::uint32_t y = m.add(lerp(m.pos(x), lerp(m.pos(prev[1]), m.pos(rung[1]), 0.5), 0.5));
+      const std::uint32_t y =
+          m.add(lerp(m.pos(x), lerp(m.pos(prev[1]), m.pos(rung[1]), 0.5), 0.5));
       m.quad(prev[0], prev[1], y, x);
       m.quad(x, y, rung[1], rung[0]);
       m.quad(prev[1], prev[2], rung[1], y);
-      for (std::uint32_t i = 2; i < pw; ++i) m.quad(prev[i], prev[i + 1], rung[i], rung[i - 1]);
+      row(2, pw, 1);
     } else if (shear_to) {
       const std::uint32_t x = to(xt);
       const std::uint32_t y =
           m.add(lerp(m.pos(x), lerp(m.pos(prev[pw - 1]), m.pos(rung[pw - 2]), 0.5), 0.5));
-      for (std::uint32_t i = 0; i + 2 < pw; ++i) m.quad(prev[i], prev[i + 1], rung[i + 1], rung[i]);
+      row(0, pw - 2, 0);
       m.quad(prev[pw - 2], prev[pw - 1], y, rung[pw - 2]);
       m.quad(prev[pw - 1], prev[pw], x, y);
       m.quad(y, x, rung[pw - 1], rung[pw - 2]);
     } else {
       const std::uint32_t j = (pw - 3) / 2;
-      for (std::uint32_t i = 0; i < j; ++i) m.quad(prev[i], prev[i + 1], rung[i + 1], rung[i]);
+      row(0, j, 0);
       const std::uint32_t p0 = prev[j], p1 = prev[j + 1], p2 = prev[j + 2], p3 = prev[j + 3];
       const std::uint32_t q0 = rung[j], q1 = rung[j + 1];
       const std::uint32_t m1 = m.add(0.5 * (m.pos(p1) + lerp(m.pos(q0), m.pos(q1), 1.0 / 3.0)));
@@ -1273,7 +1281,7 @@ std::optional<FaceMesh> fill_taper(const FaceInput& face, const Strip& st, int d
       m.quad(p1, p2, m2, m1);
       m.quad(p2, p3, q1, m2);
       m.quad(m1, m2, q1, q0);
-      for (std::uint32_t i = j + 3; i < pw; ++i) m.quad(prev[i], prev[i + 1], rung[i - 1], rung[i - 2]);
+      row(j + 3, pw, 2);
     }
     if (event) ++done;
     if (shear) ++sheared;

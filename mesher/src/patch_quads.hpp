@@ -38,7 +38,8 @@ PatchQuads patch_quads(const Part& part,
                        const std::vector<bool>& pinned);
 
 /// The threads a part's passes use: the environment's LAYTRACKS_THREADS (a whole number from
-/// 1) when set, else as many as the machine has. The output does not depend on it.
+/// 1) when set, else set_mesher_threads' count when set, else as many as the machine has. The
+/// output does not depend on it.
 std::size_t worker_threads();
 
 /// Runs fn(i) for every i in [0, n), on worker_threads() threads (at most n; on the

@@ -33,6 +33,14 @@ std::vector<MeshPartResult> check_three_poses(const RawPart& raw, double worst) 
   return out;
 }
 
+/// The part at `path` with its element size (mesh.size, which it must have) divided by `factor`.
+RawPart finer(const std::string& path, double factor) {
+  RawPart raw = read_brep_json(path);
+  REQUIRE(raw.mesh.size);
+  raw.mesh.size = *raw.mesh.size / factor;
+  return raw;
+}
+
 }  // namespace
 
 TEST_CASE("every part meshes to a valid all-quad mesh", "[mesh]") {
@@ -258,10 +266,7 @@ TEST_CASE("a large face whose structured fill is bad tries the unstructured temp
   // cgal_wheel_16_spokes at half its size: each slot's tip (a corner of 350 degrees) lay on a
   // 52-node face whose diamond fill made it one corner of 175 degrees (0.081); faces of more
   // than 48 nodes tried split and cut only below 0.05. Now below 0.2 up to 128 nodes: 0.717.
-  RawPart raw = read_brep_json(cases_dir() + "/external/cgal_wheel_16_spokes.json");
-  REQUIRE(raw.mesh.size);
-  raw.mesh.size = *raw.mesh.size / 2.0;
-  check_three_poses(raw, 0.6);
+  check_three_poses(finer(cases_dir() + "/external/cgal_wheel_16_spokes.json", 2.0), 0.6);
 }
 
 TEST_CASE("rails land on another chain's point only within a quarter track", "[mesh][pose]") {
@@ -269,10 +274,7 @@ TEST_CASE("rails land on another chain's point only within a quarter track", "[m
   // radius (kCoincideRel: 0.3), so a track rail landing between two others' points took
   // whichever rounding made nearer: 6959, 7038 or 7115 quads by pose, worst 0.70-0.74. Within
   // a quarter track (kCoincideTrack) only: the same count in every pose, all square.
-  RawPart raw = read_brep_json(cases_dir() + "/open_box.json");
-  REQUIRE(raw.mesh.size);
-  raw.mesh.size = *raw.mesh.size / 3.0;
-  check_three_poses(raw, 0.95);
+  check_three_poses(finer(cases_dir() + "/open_box.json", 3.0), 0.95);
 }
 
 TEST_CASE("breaks a hundredth of an element apart are one node", "[mesh][bridge]") {
