@@ -1922,16 +1922,23 @@ void untangle_nodes(std::vector<Vec2>& pos,
     for (std::size_t k = 0; k < 4; ++k) corners[k] = {pos[x[k]].x, pos[x[k]].y, 0.0};
     return measure_quad(corners, {0.0, 0.0, 1.0}).aspect_ratio;
   };
-  const auto stretches = [&](std::uint32_t v, Vec2 p) {
-    const Vec2 here = pos[v];
+  // Whether moving v from `from` to `to` stretches a quad round it. pos[v] is put back as it
+  // was: the search of a node that is twice in a quad has already set it to the candidate.
+  const auto stretches = [&](std::uint32_t v, Vec2 from, Vec2 to) {
+    const Vec2 was = pos[v];
+    bool stretched = false;
     for (std::uint32_t q : around[v]) {
+      pos[v] = from;
       const double now = aspect_of(quads[q]);
-      pos[v] = p;
+      pos[v] = to;
       const double then = aspect_of(quads[q]);
-      pos[v] = here;
-      if (then >= QualityThresholds::kAspectRatio && now < QualityThresholds::kAspectRatio) return true;
+      if (then >= QualityThresholds::kAspectRatio && now < QualityThresholds::kAspectRatio) {
+        stretched = true;
+        break;
+      }
     }
-    return false;
+    pos[v] = was;
+    return stretched;
   };
   bool moved = false;
   // One visit of node v: the compass search from where it is.
@@ -2030,7 +2037,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
             w = worst_at(v);
           }
           if (w > best + 1e-12 && w >= floor_j && keeps_sign(before, raw) &&
-              (!strict || !stretches(v, p))) {
+              (!strict || !stretches(v, here, p))) {
             best = w;
             best_pos = p;
           }
