@@ -113,6 +113,7 @@ int run_mesh(const std::vector<std::string>& argv) {
     for (std::size_t k = 0; k < kTemplateNames.size(); ++k)
       doc["faces_by_template"][kTemplateNames[k]] = r.stats.by_template[k];
     doc["narrow_fans_dropped"] = r.stats.narrow_fans;
+    doc["fan_cluster_merges"] = r.stats.fan_clusters;
     doc["edge_flips"] = r.stats.edge_flips;
     doc["cavity_refills"] = r.stats.cavity_refills;
     doc["loop_bridges"] = r.stats.loop_bridges;

@@ -21,6 +21,7 @@
 #include <deque>
 #include <limits>
 #include <map>
+#include <set>
 #include <tuple>
 #include <sstream>
 
@@ -85,6 +86,10 @@ constexpr double kRoundFanAngle = 40.0 * kPi / 180.0;
 /// Two MA points of a patch closer than this x h (in adaptive mode h is MIN_END_WIDTH, the
 /// finest track) are one node.
 constexpr double kMergeMaPoints = 1e-3;
+/// merge_fan_clusters: MA nodes of radius >= kFanMinRadius x h within kFanCluster x h of a
+/// deeper one are merged into it.
+constexpr double kFanCluster = 0.25;
+constexpr double kFanMinRadius = 2.0;
 /// Two MA points of a patch closer than this x the part size are one node.
 constexpr double kSamePointRel = 1e-9;
 
@@ -428,6 +433,7 @@ class QuadBuilder {
     // Rails of this patch.
     std::map<std::uint32_t, std::uint32_t> by_macut;
     std::vector<std::uint32_t> ma_nodes;
+    std::vector<double> ma_radius;  // per ma_nodes entry
     const double tol = kSamePointRel * part_.size;
     std::map<std::pair<std::uint32_t, std::uint32_t>, bool> seen;
     for (std::size_t si = 0; si < graph_.segments.size(); ++si) {
@@ -473,6 +479,7 @@ class QuadBuilder {
           b = static_cast<std::uint32_t>(g.nodes.size());
           g.nodes.push_back({mc.point.position, kNone, true});
           ma_nodes.push_back(b);
+          ma_radius.push_back(mc.point.radius);
         }
         by_macut.emplace(seg.ma.value, b);
       }
@@ -487,11 +494,96 @@ class QuadBuilder {
       r.count = edges_for(len);
       g.edges.push_back(r);
     }
+    if (!law_) merge_fan_clusters(g, ma_nodes, ma_radius);
     if (keep) return;
     drop_narrow_fans(g, false);
     drop_narrow_fans(g, true);
     drop_dangling_rails(g);
     drop_disk_rails(pid, g);
+  }
+
+  /// Fan clusters: where the boundary curves round a point of the axis (an arc a little wider
+  /// than its maximal disk, an arc meeting a flat side), the rails of the arc converge on
+  /// the axis at points a fraction of an element apart, each wedge between two of them a
+  /// sliver strip whose quads shrink to that fraction. The MA nodes of radius at least
+  /// kFanMinRadius x h within kFanCluster x h of one another become one: the deepest (largest
+  /// radius; on a tie the one whose rails' feet have the least mesh id) takes the rails of
+  /// those within that distance of it, deepest first. The rails then meet at one point, where
+  /// the narrow-fan and round-fan rules (drop_narrow_fans) thin them. A rail moves by at most
+  /// kFanCluster x h inside a maximal disk of radius kFanMinRadius x h or more, so it stays in
+  /// the patch; a cluster whose moved rails would cross another rail is left as it was.
+  void merge_fan_clusters(PatchGraph& g, const std::vector<std::uint32_t>& ma_nodes,
+                          const std::vector<double>& ma_radius) {
+    const double reach = kFanCluster * h_;
+    const double tol = kSamePointRel * part_.size;
+    std::vector<std::uint32_t> least_foot(g.nodes.size(), kNone);
+    for (const CEdge& e : g.edges) {
+      if (!e.rail) continue;
+      least_foot[e.b] = std::min(least_foot[e.b], g.nodes[e.a].mesh);
+    }
+    // Deepest first: radii compared on a grid of the point tolerance, then by least foot.
+    std::vector<std::tuple<long long, std::uint32_t, std::size_t>> order;
+    for (std::size_t i = 0; i < ma_nodes.size(); ++i)
+      if (ma_radius[i] >= kFanMinRadius * h_)
+        order.emplace_back(-std::llround(ma_radius[i] / tol), least_foot[ma_nodes[i]], i);
+    if (order.size() < 2) return;
+    std::sort(order.begin(), order.end());
+    std::vector<std::uint32_t> target(g.nodes.size(), kNone);
+    std::vector<bool> taken(ma_nodes.size(), false);
+    const auto crosses = [&](Vec2 p, Vec2 q, Vec2 r, Vec2 t) {
+      const double d1 = cross(q - p, r - p), d2 = cross(q - p, t - p);
+      const double d3 = cross(t - r, p - r), d4 = cross(t - r, q - r);
+      return ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) &&
+             ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0));
+    };
+    for (std::size_t oi = 0; oi < order.size(); ++oi) {
+      const std::size_t c = std::get<2>(order[oi]);
+      if (taken[c]) continue;
+      taken[c] = true;
+      const std::uint32_t centre = ma_nodes[c];
+      std::vector<std::size_t> members;  // indices into ma_nodes
+      for (std::size_t oj = oi + 1; oj < order.size(); ++oj) {
+        const std::size_t m = std::get<2>(order[oj]);
+        if (taken[m]) continue;
+        if (distance(g.nodes[ma_nodes[m]].p, g.nodes[centre].p) <= reach) members.push_back(m);
+      }
+      if (members.empty()) continue;
+      for (std::size_t m : members) target[ma_nodes[m]] = centre;
+      // Would a moved rail cross another rail (either moved or not)?
+      const auto end_of = [&](const CEdge& e) {
+        return target[e.b] != kNone ? g.nodes[target[e.b]].p : g.nodes[e.b].p;
+      };
+      bool clash = false;
+      for (std::size_t i = 0; i < g.edges.size() && !clash; ++i) {
+        const CEdge& e = g.edges[i];
+        if (!e.rail || target[e.b] != centre) continue;
+        const Vec2 a = g.nodes[e.a].p, b = end_of(e);
+        for (std::size_t j = 0; j < g.edges.size() && !clash; ++j) {
+          const CEdge& f = g.edges[j];
+          if (j == i || !f.rail) continue;
+          clash = crosses(a, b, g.nodes[f.a].p, end_of(f));
+        }
+      }
+      for (std::size_t m : members) {
+        if (clash) {
+          target[ma_nodes[m]] = kNone;
+        } else {
+          taken[m] = true;
+        }
+      }
+      if (!clash) result_.stats.fan_clusters += members.size();
+    }
+    std::set<std::pair<std::uint32_t, std::uint32_t>> seen;
+    std::vector<CEdge> kept;
+    for (CEdge e : g.edges) {
+      if (e.rail) {
+        if (target[e.b] != kNone) e.b = target[e.b];
+        if (!seen.emplace(e.a, e.b).second) continue;
+        e.count = edges_for(distance(g.nodes[e.a].p, g.nodes[e.b].p));
+      }
+      kept.push_back(e);
+    }
+    g.edges = std::move(kept);
   }
 
   /// A patch with one loop whose rails all meet at one MA point, all round it (a disk, a

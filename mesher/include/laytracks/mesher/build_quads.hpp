@@ -40,6 +40,7 @@ struct QuadStats {
   std::array<std::size_t, kTemplateNames.size()> by_template{};
   std::size_t narrow_fans = 0;     ///< rails dropped: under 10 degrees from another at a node
   std::size_t dangling_rails = 0;  ///< rail segments left out: their MA end met no other rail
+  std::size_t fan_clusters = 0;    ///< MA nodes merged into a deeper one (merge_fan_clusters)
   std::size_t parity_boundary = 0;  ///< boundary pieces given one more edge for parity
   std::size_t parity_rails = 0;     ///< rail segments given one more edge for parity
   std::size_t edge_flips = 0;       ///< quad pairs re-split by flip_edges
