@@ -17,6 +17,9 @@
 #include "laytracks/mesher/build_quads.hpp"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstdlib>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -67,6 +70,14 @@ constexpr int kFlipPasses = 4;
 /// Two rails from one boundary node closer in angle than this are not both kept (10 degrees:
 /// the quad at their tip would have a scaled Jacobian below sin 10 = 0.17).
 constexpr double kMinFanAngle = 10.0 * kPi / 180.0;
+/// At a reflex corner (an interior angle above kReflexFanCorner) two neighbouring rails both no
+/// longer than kShortFanRail x h are not both kept closer than kMinReflexFanAngle: the corner's
+/// quads get corners of 30 degrees or more, not ten (l_shape 0.707 -> 0.973).
+constexpr double kReflexFanCorner = 200.0 * kPi / 180.0;
+constexpr double kMinReflexFanAngle = 25.0 * kPi / 180.0;
+constexpr double kShortFanRail = 6.0;
+/// Angles (radians) this close are alike when a reflex corner's fan is thinned.
+constexpr double kAngleTie = 1e-9;
 /// Adaptive mode: the track widths beside a rail's foot count in Eq. (2) within this factor
 /// of the width law's there.
 constexpr double kFootWidthBound = 2.0;
@@ -717,6 +728,15 @@ class QuadBuilder {
       }
     }
     const double tol = kSamePointRel * part_.size;
+    // Boundary nodes along the loops, at B-Rep vertices between two straight edges.
+    std::map<std::uint32_t, std::uint32_t> next_of, prev_of;
+    std::set<std::uint32_t> by_arc;
+    for (const CEdge& e : g.edges)
+      if (!at_ma && !e.rail) {
+        next_of[e.a] = e.b;
+        prev_of[e.b] = e.a;
+        if (units_[e.edge].arc >= 0) by_arc.insert({e.a, e.b});
+      }
     std::vector<bool> drop(g.edges.size(), false);
     for (auto& [node, rails] : at) {
       const Vec2 o = g.nodes[node].p;
@@ -762,8 +782,25 @@ class QuadBuilder {
         round_fan = open <= kRoundFanOpenGaps && widest > kDiskGap;
       }
       if (round_fan) thin_round_fan(g, rails, gap, plain_cap, drop, feet);
+      // The boundary's interior angle at a boundary node (the patch lies left of its loops).
+      bool reflex = false;
+      if (!at_ma && !law_) {
+        const auto n = next_of.find(node), p = prev_of.find(node);
+        const std::uint32_t mesh = g.nodes[node].mesh;
+        if (n != next_of.end() && p != prev_of.end() && mesh != kNone && is_vertex_node_[mesh] &&
+            !by_arc.count(node)) {
+          const Vec2 w = g.nodes[n->second].p - o, u = g.nodes[p->second].p - o;
+          double interior = std::atan2(cross(w, u), dot(w, u));
+          if (interior < 0.0) interior += 2.0 * kPi;
+          reflex = interior > kReflexFanCorner;
+        }
+      }
+      const double limit = at_ma ? kMinWedgeAngle : reflex ? kMinReflexFanAngle : kMinFanAngle;
+      const auto pair_id = [&](std::size_t k) {
+        return std::min(g.edges[rails[k]].seg, g.edges[rails[(k + 1) % rails.size()]].seg);
+      };
       while (rails.size() >= 2) {
-        double closest = at_ma ? kMinWedgeAngle : kMinFanAngle;
+        double closest = limit;
         std::size_t pick = rails.size();
         for (std::size_t k = 0; k < rails.size(); ++k) {
           const double angle = gap(k);
@@ -772,6 +809,18 @@ class QuadBuilder {
           if (at_ma && distance(dir(rails[k]), dir(rails[(k + 1) % rails.size()])) >
                            kMaxWedgeFeet * h_)
             continue;
+          // At a reflex corner the wider limit holds for short rails only: dropping a long
+          // one takes a long chain, and wide faces far from the corner, with it.
+          if (reflex && (norm(dir(rails[k])) > kShortFanRail * h_ ||
+                         norm(dir(rails[(k + 1) % rails.size()])) > kShortFanRail * h_) &&
+              angle >= kMinFanAngle)
+            continue;
+          if (reflex && pick < rails.size() && std::abs(angle - closest) <= kAngleTie) {
+            // A reflex corner's fan is often regular: of gaps alike (to rounding), the pair
+            // with the least rail segment id, the same in every pose.
+            if (pair_id(k) < pair_id(pick)) pick = k;
+            continue;
+          }
           if (angle < closest) {
             closest = angle;
             pick = k;
@@ -781,6 +830,8 @@ class QuadBuilder {
         const std::size_t other = (pick + 1) % rails.size();
         const double lp = norm(dir(rails[pick])), lo = norm(dir(rails[other]));
         std::size_t gone = lp >= lo ? pick : other;
+        if (reflex && std::abs(lp - lo) <= tol)
+          gone = g.edges[rails[pick]].seg > g.edges[rails[other]].seg ? pick : other;
         if (at_ma && std::abs(lp - lo) <= tol && rails.size() >= 3) {
           const double before = gap((pick + rails.size() - 1) % rails.size());
           const double after = gap(other);

@@ -288,6 +288,15 @@ TEST_CASE("rails converging on the axis a fraction of an element apart meet at o
   }
 }
 
+TEST_CASE("rails into a reflex corner are 25 degrees apart where they are short", "[mesh][fan]") {
+  // l_shape's 270-degree corner had a fan of five rails 18 degrees apart (kMinFanAngle is
+  // 10), so its quads had 135-degree corners there (0.707, against Gmsh's 0.709). Short
+  // rails (up to 6 h) into a reflex B-Rep vertex keep kMinReflexFanAngle = 25 degrees:
+  // 0.973 in every pose.
+  for (const MeshPartResult& r : check_three_poses(read_brep_json(cases_dir() + "/l_shape.json"), 0.95))
+    CHECK(r.stats.narrow_fans > 0);
+}
+
 TEST_CASE("rails land on another chain's point only within a quarter track", "[mesh][pose]") {
   // open_box at a third of its size: tracks 0.167 apart, closer than 0.05 x its walls' medial
   // radius (kCoincideRel: 0.3), so a track rail landing between two others' points took
