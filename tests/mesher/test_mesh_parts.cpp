@@ -2,6 +2,7 @@
 // the same mesh in every pose, the same bytes on every run.
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <string>
@@ -31,6 +32,18 @@ std::vector<MeshPartResult> check_three_poses(const RawPart& raw, double worst) 
     CHECK(r.mesh.elements.size() == out.front().mesh.elements.size());
   }
   return out;
+}
+
+/// Each part of tests/data/parts named in `cases` (file, worst corner) through
+/// check_three_poses; `acted` says whether the rule under test acted in each pose.
+template <class Acted>
+void check_test_parts(std::initializer_list<std::pair<const char*, double>> cases, Acted acted) {
+  for (const auto& [file, worst] : cases) {
+    INFO(file);
+    for (const MeshPartResult& r :
+         check_three_poses(read_brep_json(test_data_dir() + "/parts/" + file), worst))
+      CHECK(acted(r));
+  }
 }
 
 /// The part at `path` with its element size (mesh.size, which it must have) divided by `factor`.
@@ -249,16 +262,8 @@ TEST_CASE("the rails of a large fillet do not all meet at its centre, in every p
   // (7 elements): every rail of an arc meets at its centre, and the wedges there were 6.4
   // degrees (worst corner 0.106) and 10 degrees (0.566). Thinned to about 40 degrees
   // (kRoundFanAngle), by node ids and counts, so that every pose keeps the same rails.
-  const struct {
-    const char* file;
-    double worst;
-  } cases[] = {{"round_ends.json", 0.55}, {"corner_fillets.json", 0.65}};
-  for (const auto& c : cases) {
-    INFO(c.file);
-    for (const MeshPartResult& r :
-         check_three_poses(read_brep_json(test_data_dir() + "/parts/" + c.file), c.worst))
-      CHECK(r.stats.narrow_fans > 0);
-  }
+  check_test_parts({{"round_ends.json", 0.55}, {"corner_fillets.json", 0.65}},
+                   [](const MeshPartResult& r) { return r.stats.narrow_fans > 0; });
 }
 
 TEST_CASE("a large face whose structured fill is bad tries the unstructured templates",
@@ -276,16 +281,8 @@ TEST_CASE("rails converging on the axis a fraction of an element apart meet at o
   // points 0.02-0.2 h apart, each wedge between two a sliver strip. Merged into the deepest
   // node within h/4 (merge_fan_clusters), the fan is thinned like a round one: 0.006 -> 0.24
   // (5432 -> 3060 quads) and 0.251 -> 0.52.
-  const struct {
-    const char* file;
-    double worst;
-  } cases[] = {{"arc_fan_wide.json", 0.2}, {"arc_fan_d.json", 0.45}};
-  for (const auto& c : cases) {
-    INFO(c.file);
-    for (const MeshPartResult& r :
-         check_three_poses(read_brep_json(test_data_dir() + "/parts/" + c.file), c.worst))
-      CHECK(r.stats.fan_clusters > 0);
-  }
+  check_test_parts({{"arc_fan_wide.json", 0.2}, {"arc_fan_d.json", 0.45}},
+                   [](const MeshPartResult& r) { return r.stats.fan_clusters > 0; });
 }
 
 TEST_CASE("rails into a reflex corner are 25 degrees apart where they are short", "[mesh][fan]") {
