@@ -505,7 +505,10 @@ class QuadBuilder {
       r.count = edges_for(len);
       g.edges.push_back(r);
     }
-    if (!law_) merge_fan_clusters(g, ma_nodes, ma_radius);
+    if (!law_) {
+      const std::size_t merged = merge_fan_clusters(g, ma_nodes, ma_radius);
+      if (!keep) result_.stats.fan_clusters += merged;  // the second pass merges them again
+    }
     if (keep) return;
     drop_narrow_fans(g, false);
     drop_narrow_fans(g, true);
@@ -523,8 +526,9 @@ class QuadBuilder {
   /// the narrow-fan and round-fan rules (drop_narrow_fans) thin them. A rail moves by at most
   /// kFanCluster x h inside a maximal disk of radius kFanMinRadius x h or more, so it stays in
   /// the patch; a cluster whose moved rails would cross another rail is left as it was.
-  void merge_fan_clusters(PatchGraph& g, const std::vector<std::uint32_t>& ma_nodes,
-                          const std::vector<double>& ma_radius) {
+  /// Returns the count of MA nodes merged into another.
+  std::size_t merge_fan_clusters(PatchGraph& g, const std::vector<std::uint32_t>& ma_nodes,
+                                 const std::vector<double>& ma_radius) {
     const double reach = kFanCluster * h_;
     const double tol = kSamePointRel * part_.size;
     std::vector<std::uint32_t> least_foot(g.nodes.size(), kNone);
@@ -537,8 +541,9 @@ class QuadBuilder {
     for (std::size_t i = 0; i < ma_nodes.size(); ++i)
       if (ma_radius[i] >= kFanMinRadius * h_)
         order.emplace_back(-std::llround(ma_radius[i] / tol), least_foot[ma_nodes[i]], i);
-    if (order.size() < 2) return;
+    if (order.size() < 2) return 0;
     std::sort(order.begin(), order.end());
+    std::size_t merged = 0;
     std::vector<std::uint32_t> target(g.nodes.size(), kNone);
     std::vector<bool> taken(ma_nodes.size(), false);
     const auto crosses = [&](Vec2 p, Vec2 q, Vec2 r, Vec2 t) {
@@ -582,19 +587,22 @@ class QuadBuilder {
           taken[m] = true;
         }
       }
-      if (!clash) result_.stats.fan_clusters += members.size();
+      if (!clash) merged += members.size();
     }
     std::set<std::pair<std::uint32_t, std::uint32_t>> seen;
     std::vector<CEdge> kept;
     for (CEdge e : g.edges) {
       if (e.rail) {
-        if (target[e.b] != kNone) e.b = target[e.b];
+        if (target[e.b] != kNone) {
+          e.b = target[e.b];
+          e.count = edges_for(distance(g.nodes[e.a].p, g.nodes[e.b].p));
+        }
         if (!seen.emplace(e.a, e.b).second) continue;
-        e.count = edges_for(distance(g.nodes[e.a].p, g.nodes[e.b].p));
       }
       kept.push_back(e);
     }
     g.edges = std::move(kept);
+    return merged;
   }
 
   /// A patch with one loop whose rails all meet at one MA point, all round it (a disk, a
@@ -728,11 +736,12 @@ class QuadBuilder {
       }
     }
     const double tol = kSamePointRel * part_.size;
-    // Boundary nodes along the loops, at B-Rep vertices between two straight edges.
+    // Reflex fans (uniform mode): each boundary node's neighbours along its loop, and the
+    // nodes on arcs (the angle between chords there is no corner).
     std::map<std::uint32_t, std::uint32_t> next_of, prev_of;
     std::set<std::uint32_t> by_arc;
     for (const CEdge& e : g.edges)
-      if (!at_ma && !e.rail) {
+      if (!at_ma && !law_ && !e.rail) {
         next_of[e.a] = e.b;
         prev_of[e.b] = e.a;
         if (units_[e.edge].arc >= 0) by_arc.insert({e.a, e.b});
