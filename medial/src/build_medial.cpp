@@ -62,6 +62,19 @@ class Extractor {
     }
     size_ = box.diagonal();
     centre_ = lerp(box.lo, box.hi, 0.5);
+    // Smooth corners: tangent-continuous ones, and convex ones turning by less than flat_turn.
+    smooth_ = poly_.smooth;
+    smooth_.resize(poly_.loops.size());
+    for (std::size_t l = 0; l < poly_.loops.size(); ++l) {
+      const auto& loop = poly_.loops[l];
+      const std::size_t n = loop.size();
+      smooth_[l].resize(n, false);
+      for (std::size_t i = 0; i < n && options_.flat_turn > 0.0; ++i) {
+        const Vec2 in = loop[i] - loop[(i + n - 1) % n], out = loop[(i + 1) % n] - loop[i];
+        const double turn = std::atan2(cross(in, out), dot(in, out));  // > 0: convex
+        if (turn > 0.0 && turn < options_.flat_turn) smooth_[l][i] = true;
+      }
+    }
   }
 
   MedialAxis run() {
@@ -172,7 +185,7 @@ class Extractor {
 
   bool is_smooth_corner(const MaVertex& v) const {
     if (!v.corner) return false;
-    const auto& sm = poly_.smooth;
+    const auto& sm = smooth_;
     return v.corner->loop < sm.size() && v.corner->index < sm[v.corner->loop].size() &&
            sm[v.corner->loop][v.corner->index];
   }
@@ -264,6 +277,7 @@ class Extractor {
 
   const Polygon2& poly_;
   MedialOptions options_;
+  std::vector<std::vector<bool>> smooth_;  // per loop corner: its branch is pruned
   double size_ = 0.0;
   Vec2 centre_;
 };

@@ -114,6 +114,20 @@ TEST_CASE("regular polygon: one branch point at the centre", "[medial]") {
   }
 }
 
+TEST_CASE("nearly flat corners grow no branch: a 24-gon's axis is its centre", "[medial]") {
+  // Its corners turn by 15 degrees, less than kFlatCornerTurn: pruned as a polygonised
+  // circle's are, so the axis is the deepest vertex. Without the rule, 24 branches.
+  const Polygon2 p = polygon({regular(24, 5.0, {1, -2})});
+  const MedialAxis flat = compute_medial_axis(p);
+  REQUIRE(flat.vertices().size() == 1);
+  CHECK(distance(flat.vertices()[0].position, {1, -2}) < 1e-9);
+  MedialOptions off;
+  off.flat_turn = 0.0;
+  CHECK(compute_medial_axis(p, off).edges().size() == 24);
+  // A 12-gon's corners turn by 30 degrees: they keep their branches.
+  CHECK(compute_medial_axis(polygon({regular(12, 5.0)})).edges().size() == 12);
+}
+
 namespace {
 
 /// An annulus whose circles are polygonised with n segments each, all corners smooth.

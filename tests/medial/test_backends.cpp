@@ -20,6 +20,7 @@ MedialAxis axis_with(const Polygon2& poly, VoronoiBackend backend, double chord_
   MedialOptions options;
   options.chord_tol = chord_tol;
   options.backend = backend;
+  options.flat_turn = 0.0;  // the diagram as the backend makes it
   return compute_medial_axis(poly, options);
 }
 

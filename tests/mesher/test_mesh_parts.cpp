@@ -294,6 +294,13 @@ TEST_CASE("rails into a reflex corner are 25 degrees apart where they are short"
     CHECK(r.stats.narrow_fans > 0);
 }
 
+TEST_CASE("a faceted shell's polygon caps are meshed as disks", "[mesh][flat]") {
+  // A 24-sided closed prism: each cap a 24-gon whose corners turn by 15 degrees. With a medial
+  // branch at every corner its caps were 24 thin wedges (worst corner 0.268); nearly flat
+  // corners are smooth for the axis (kFlatCornerTurn), the caps are disks, meshed as O-grids.
+  check_three_poses(read_brep_json(test_data_dir() + "/parts/prism24.json"), 0.8);
+}
+
 TEST_CASE("rails land on another chain's point only within a quarter track", "[mesh][pose]") {
   // open_box at a third of its size: tracks 0.167 apart, closer than 0.05 x its walls' medial
   // radius (kCoincideRel: 0.3), so a track rail landing between two others' points took

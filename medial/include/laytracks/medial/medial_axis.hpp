@@ -97,11 +97,20 @@ enum class VoronoiBackend : std::uint8_t {
   BoostOnly
 };
 
+/// A convex corner where the boundary turns by less than this (25 degrees) is nearly flat: the
+/// medial axis prunes its branch as an arc point's (docs/medial.md, step 5).
+inline constexpr double kFlatCornerTurn = 25.0 * 3.14159265358979323846 / 180.0;
+
 struct MedialOptions {
   /// Sagitta bound used to discretise the arcs of this polygon (part units). Structure smaller
   /// than a few times this, left over after pruning smooth branches, is an artefact of the
   /// discretisation and is pruned too. 0 disables that step.
   double chord_tol = 0.0;
+  /// A convex corner where the boundary turns by less than this (radians) is treated as smooth:
+  /// its branch, from the corner to the first junction, is pruned as an arc point's is. A
+  /// polygonised curve given as straight edges (a 60-gon ellipse: turns of 5-20 degrees) has
+  /// a branch at every vertex, each a long thin corridor of its own. 0 disables it.
+  double flat_turn = kFlatCornerTurn;
   /// The Voronoi backend (see VoronoiBackend).
   VoronoiBackend backend = VoronoiBackend::Boost;
 };
