@@ -17,9 +17,6 @@
 #include "laytracks/mesher/build_quads.hpp"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
-#include <cstdlib>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -72,7 +69,7 @@ constexpr int kFlipPasses = 4;
 constexpr double kMinFanAngle = 10.0 * kPi / 180.0;
 /// At a reflex corner (an interior angle above kReflexFanCorner) two neighbouring rails both no
 /// longer than kShortFanRail x h are not both kept closer than kMinReflexFanAngle: the corner's
-/// quads get corners of 30 degrees or more, not ten (l_shape 0.707 -> 0.973).
+/// quads get corners of 25 degrees or more, not ten (l_shape 0.707 -> 0.973).
 constexpr double kReflexFanCorner = 200.0 * kPi / 180.0;
 constexpr double kMinReflexFanAngle = 25.0 * kPi / 180.0;
 constexpr double kShortFanRail = 6.0;
