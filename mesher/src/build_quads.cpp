@@ -502,10 +502,8 @@ class QuadBuilder {
       r.count = edges_for(len);
       g.edges.push_back(r);
     }
-    if (!law_) {
-      const std::size_t merged = merge_fan_clusters(g, ma_nodes, ma_radius);
-      if (!keep) result_.stats.fan_clusters += merged;  // the second pass merges them again
-    }
+    const std::size_t merged = merge_fan_clusters(g, ma_nodes, ma_radius);
+    if (!keep) result_.stats.fan_clusters += merged;  // the second pass merges them again
     if (keep) return;
     drop_narrow_fans(g, false);
     drop_narrow_fans(g, true);
