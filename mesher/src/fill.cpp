@@ -194,6 +194,16 @@ void relax(FaceMesh& m, const FaceInput& face, int iterations) {
 struct Strip {
   std::vector<std::uint32_t> cap1, rail1, cap2, rail2;
   std::vector<std::uint32_t> joints1, joints2;
+  /// Edge counts: cap1, cap2, rail1, rail2.
+  struct Edges {
+    std::uint32_t a, c, n1, n2;
+  };
+  Edges edges() const {
+    const auto e = [](const std::vector<std::uint32_t>& run) {
+      return static_cast<std::uint32_t>(run.size() - 1);
+    };
+    return {e(cap1), e(cap2), e(rail1), e(rail2)};
+  }
 };
 
 std::vector<std::uint32_t> run_of(const FaceInput& face, std::uint32_t first, std::uint32_t edges) {
@@ -1143,10 +1153,8 @@ bool fill_remainder(Builder& m, const Strip& st, const std::vector<std::uint32_t
 /// strips out of the O(n^3) templates and puts the irregular quads in one place.
 std::optional<FaceMesh> fill_strip(const FaceInput& face, const Strip& st, int depth) {
   if (depth > 1 || st.cap1.size() < 2 || st.cap2.size() < 2) return std::nullopt;
-  const auto a = static_cast<std::uint32_t>(st.cap1.size() - 1);
-  const auto c = static_cast<std::uint32_t>(st.cap2.size() - 1);
-  const auto n1 = static_cast<std::uint32_t>(st.rail1.size() - 1);
-  const auto n2 = static_cast<std::uint32_t>(st.rail2.size() - 1);
+  const Strip::Edges e = st.edges();  // not a structured binding: lambdas capture n1, n2
+  const std::uint32_t a = e.a, c = e.c, n1 = e.n1, n2 = e.n2;
   const std::uint32_t lo = std::min(n1, n2);
   const std::uint32_t mismatch = (a > c ? a - c : c - a) + (n1 > n2 ? n1 - n2 : n2 - n1);
   const std::uint32_t keep = std::max({a, c, mismatch, 2u});
@@ -1204,10 +1212,8 @@ constexpr std::uint32_t kTaperCaps = 4;
 
 std::optional<FaceMesh> fill_taper(const FaceInput& face, const Strip& st, int depth) {
   if (depth > 1 || st.cap1.size() < 2 || st.cap2.size() < 2) return std::nullopt;
-  const auto a = static_cast<std::uint32_t>(st.cap1.size() - 1);
-  const auto c = static_cast<std::uint32_t>(st.cap2.size() - 1);
-  const auto n1 = static_cast<std::uint32_t>(st.rail1.size() - 1);
-  const auto n2 = static_cast<std::uint32_t>(st.rail2.size() - 1);
+  const Strip::Edges e = st.edges();  // not a structured binding: lambdas capture n1, n2
+  const std::uint32_t a = e.a, c = e.c, n1 = e.n1, n2 = e.n2;
   const bool from_cap1 = a >= c;
   const std::uint32_t wide = std::max(a, c), narrow = std::min(a, c);
   if (wide < narrow + kTaperCaps) return std::nullopt;
