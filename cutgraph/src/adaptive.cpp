@@ -138,8 +138,7 @@ RadiusSample TrackWidthLaw::radius(PatchId p, const BoundaryPoint& bp) const {
     };
     const bool at_branch = at(e.a, m->t <= kAtEndT) || at(e.b, m->t >= 1.0 - kAtEndT);
     if (at_branch) continue;
-    const Side other = e.left == b.site ? Side::Right : Side::Left;
-    const BoundaryPoint target = ma.touching_point(*m, other);
+    const BoundaryPoint target = ma.touching_point(*m, ma.far_side(*m, b));
     if (target.site.kind != BoundarySite::Kind::Segment) continue;
     add_images(q, target);
   }

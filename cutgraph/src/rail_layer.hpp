@@ -230,9 +230,7 @@ class RailLayer {
       links_.push_back({c.g.value, node_of(mc), p, 0.0});
       return;
     }
-    const MaEdge& e = ma.edge(m->edge);
-    const Side other = e.left == bp.site ? Side::Right : Side::Left;
-    const BoundaryPoint target = ma.touching_point(*m, other);
+    const BoundaryPoint target = ma.touching_point(*m, ma.far_side(*m, bp));
     double gap = 0.0;
     // A rail that has crossed more shared edges than a closed chain could need without closing
     // (a spiral round the draft walls of a tray, whose landings never meet their start) ends

@@ -79,8 +79,16 @@ std::vector<std::string> validate_cut_graph(const Part& part,
     }
     // Rails into the centre of a polygonised arc are longer than its radius by the sagitta.
     // A rail closing a loop on an existing point leans (RailLayer): not along the mapping.
-    if (!s.leans &&
-        std::fabs(distance(c.position, m.point.position) - m.point.radius) > tol + part.chord_tol) {
+    // A rail to or from a spread zone, or into the vertex a pruned corner maps to
+    // (MedialAxis::project), leans too, but never into the disk.
+    const double length = distance(c.position, m.point.position);
+    BoundaryPoint at;
+    at.site = {BoundarySite::Kind::Segment, c.at.loop, c.at.segment};
+    at.s = c.at.s;
+    at.position = c.position;
+    const bool spread = m.point.off_normal || ma.in_spread_zone(at);
+    if (spread ? length < m.point.radius - tol
+               : !s.leans && std::fabs(length - m.point.radius) > tol + part.chord_tol) {
       problems.push_back("a rail segment on " + part.patch_label(c.patch) +
                          " is not as long as the radius at its MA point");
     }

@@ -21,6 +21,13 @@ namespace {
 constexpr double kLocateRel = 1e-9;
 /// Radii must equal the distance to the boundary within this x the polygon's diagonal.
 constexpr double kRadiusRel = 1e-9;
+/// A spread zone reaches into the covered boundary on each side of its stretch by this x the
+/// stretch's length (docs/medial.md): the stretch and its reaches, 3 lengths of boundary, map
+/// onto the axis beside the root that the reaches alone had, rails converging by a third.
+constexpr double kSpreadReach = 1.0;
+/// A spread zone is made only where the axis beside its root (the image of the reaches) is at
+/// least this x the stretch's length: the stretch is taken at most 2:1.
+constexpr double kMinSpreadImage = 0.5;
 /// validate() compares radii against a brute-force distance to every segment; above this many
 /// vertex x segment pairs it checks an evenly spread subset of the vertices.
 constexpr double kBruteForceBudget = 5e7;
@@ -97,6 +104,130 @@ MedialAxis::MedialAxis(Polygon2 polygon, std::vector<MaVertex> vertices, std::ve
     cells_[cell_index(e.left)].push_back(MaEdgeId(i));
     cells_[cell_index(e.right)].push_back(MaEdgeId(i));
   }
+  find_spread_zones();
+}
+
+void MedialAxis::find_spread_zones() {
+  const double eps = kLocateRel * size_;
+  for (std::uint32_t l = 0; l < polygon_.loops.size(); ++l) {
+    const auto n = static_cast<std::uint32_t>(polygon_.loops[l].size());
+    // Per segment: the parameter range its cell's edges touch, and the edge and vertex at each
+    // end of it (lo > hi: no edge at all, the whole segment is uncovered).
+    struct Cover {
+      double lo = INFINITY, hi = -INFINITY;
+      MaEdgeId lo_edge, hi_edge;
+      MaVertexId lo_vertex, hi_vertex;
+      double len = 0.0;
+    };
+    std::vector<Cover> cover(n);
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const BoundarySite seg{BoundarySite::Kind::Segment, l, i};
+      Cover& c = cover[i];
+      c.len = distance(seg_start(polygon_, l, i), seg_end(polygon_, l, i));
+      for (MaEdgeId id : cells_[cell_index(seg)]) {
+        const MaEdge& e = edges_[id.index()];
+        for (MaVertexId v : {e.a, e.b}) {
+          const double f = segment_param(polygon_, seg, vertices_[v.index()].position);
+          if (f < c.lo) c = Cover{f, c.hi, id, c.hi_edge, v, c.hi_vertex, c.len};
+          if (f > c.hi) c = Cover{c.lo, f, c.lo_edge, id, c.lo_vertex, v, c.len};
+        }
+      }
+    }
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const Cover& a = cover[i];
+      if (!(a.lo <= a.hi) || a.len <= 0.0 || (1.0 - a.hi) * a.len <= eps) continue;
+      // An uncovered end: walk on through uncovered segments to the next covered start.
+      SpreadZone z;
+      z.loop = l;
+      double length = (1.0 - a.hi) * a.len;
+      std::uint32_t k = (i + 1) % n;
+      std::vector<std::uint32_t> whole;
+      for (std::uint32_t step = 0; step < n && !(cover[k].lo <= cover[k].hi); ++step) {
+        whole.push_back(k);
+        length += cover[k].len;
+        k = (k + 1) % n;
+      }
+      const Cover& b = cover[k];
+      if (k == i || !(b.lo <= b.hi) || b.lo * b.len <= eps) continue;
+      length += b.lo * b.len;
+      // Both ends at one vertex of degree 2, whose two edges hold the ends: the axis runs on
+      // both ways from the vertex the whole stretch maps to.
+      const MaVertexId root = a.hi_vertex;
+      if (b.lo_vertex != root || vertices_[root.index()].degree != 2 ||
+          a.hi_edge == b.lo_edge || !(vertices_[root.index()].radius > 0.0))
+        continue;
+      // Parameter along an edge of a segment's foot there: linear (a line's t follows arc
+      // length, a parabola's its touching point along its segment site).
+      const auto t_at = [&](MaEdgeId id, std::uint32_t seg, double f) {
+        const MaEdge& e = edges_[id.index()];
+        const BoundarySite site{BoundarySite::Kind::Segment, l, seg};
+        const double fa = segment_param(polygon_, site, vertices_[e.a.index()].position);
+        const double fb = segment_param(polygon_, site, vertices_[e.b.index()].position);
+        return fb != fa ? std::clamp((f - fa) / (fb - fa), 0.0, 1.0) : 0.0;
+      };
+      const auto other_foot = [&](MaEdgeId id, std::uint32_t seg) {
+        const MaEdge& e = edges_[id.index()];
+        const BoundarySite site{BoundarySite::Kind::Segment, l, seg};
+        return segment_param(polygon_, site,
+                             vertices_[(e.a == root ? e.b : e.a).index()].position);
+      };
+      // The zone reaches on each side into the covered boundary by the stretch's length, at
+      // most half of what the root's edge covers there (kSpreadReach).
+      const double d1 = std::min(kSpreadReach * length,
+                                 0.5 * std::max(0.0, a.hi - other_foot(a.hi_edge, i)) * a.len);
+      const double d2 = std::min(kSpreadReach * length,
+                                 0.5 * std::max(0.0, other_foot(b.lo_edge, k) - b.lo) * b.len);
+      if (d1 <= eps || d2 <= eps) continue;
+      const double s1 = a.hi - d1 / a.len, s2 = b.lo + d2 / b.len;
+      z.pieces.push_back({i, s1, 1.0, 0.0});
+      double at = (1.0 - s1) * a.len;
+      for (std::uint32_t w : whole) {
+        z.pieces.push_back({w, 0.0, 1.0, at});
+        at += cover[w].len;
+      }
+      z.pieces.push_back({k, 0.0, s2, at});
+      z.length = at + s2 * b.len;
+      z.e1 = a.hi_edge;
+      z.e2 = b.lo_edge;
+      z.t1 = t_at(z.e1, i, s1);
+      z.t1v = edges_[z.e1.index()].a == root ? 0.0 : 1.0;
+      z.t2v = edges_[z.e2.index()].a == root ? 0.0 : 1.0;
+      z.t2 = t_at(z.e2, k, s2);
+      const Vec2 r = vertices_[root.index()].position;
+      const double l1 = distance(point_on_edge(z.e1, z.t1).position, r);
+      const double l2 = distance(point_on_edge(z.e2, z.t2).position, r);
+      if (!(l1 + l2 > eps)) continue;
+      // Too little axis beside the root to take the stretch (an arc's centre, where the axis
+      // ends in short pieces): the fan stays, for the mesher's round-fan rules.
+      if (l1 + l2 < kMinSpreadImage * length) continue;
+      z.split = l1 / (l1 + l2);
+      z.near1 = {BoundarySite::Kind::Segment, l, i};
+      z.near2 = {BoundarySite::Kind::Segment, l, k};
+      zones_.push_back(std::move(z));
+    }
+  }
+}
+
+const MedialAxis::SpreadZone* MedialAxis::zone_of(const BoundaryPoint& p) const {
+  if (p.site.kind != BoundarySite::Kind::Segment) return nullptr;
+  for (const SpreadZone& z : zones_) {
+    if (z.loop != p.site.loop) continue;
+    for (const auto& piece : z.pieces) {
+      if (piece.segment == p.site.index && p.s >= piece.s0 && p.s <= piece.s1) return &z;
+    }
+  }
+  return nullptr;
+}
+
+Side MedialAxis::far_side(const MaPoint& m, const BoundaryPoint& p) const {
+  const MaEdge& e = edges_[m.edge.index()];
+  if (e.left == p.site) return Side::Right;
+  if (e.right == p.site) return Side::Left;
+  if (const SpreadZone* z = zone_of(p)) {
+    const BoundarySite& near = m.edge == z->e1 ? z->near1 : z->near2;
+    return e.left == near ? Side::Right : Side::Left;
+  }
+  return Side::Left;
 }
 
 std::size_t MedialAxis::cell_index(const BoundarySite& s) const {
@@ -196,6 +327,23 @@ std::optional<MaPoint> MedialAxis::locate(MaEdgeId id, Vec2 x) const {
 
 std::optional<MaPoint> MedialAxis::project(const BoundaryPoint& bp) const {
   if (bp.site.kind != BoundarySite::Kind::Segment) return std::nullopt;
+  if (const SpreadZone* z = zone_of(bp)) {
+    double x = 0.0;
+    for (const auto& piece : z->pieces) {
+      if (piece.segment != bp.site.index) continue;
+      const double len = distance(seg_start(polygon_, bp.site.loop, piece.segment),
+                                  seg_end(polygon_, bp.site.loop, piece.segment));
+      x = piece.at + (bp.s - piece.s0) * len;
+      break;
+    }
+    const double f = std::clamp(x / z->length, 0.0, 1.0);
+    MaPoint m = f <= z->split
+                    ? point_on_edge(z->e1, z->t1 + (z->t1v - z->t1) * (f / z->split))
+                    : point_on_edge(z->e2, z->t2v + (z->t2 - z->t2v) * ((f - z->split) /
+                                                                          (1.0 - z->split)));
+    m.off_normal = true;
+    return m;
+  }
   if (edges_.empty()) {
     // A polygonised disk: its axis is its centre, which every boundary point maps to.
     if (vertices_.empty()) return std::nullopt;
@@ -231,6 +379,7 @@ std::optional<MaPoint> MedialAxis::project(const BoundaryPoint& bp) const {
       best = point_on_edge(id, edges_[id.index()].a == MaVertexId(v) ? 0.0 : 1.0);
     }
   }
+  if (best) best->off_normal = true;
   return best;
 }
 
@@ -277,6 +426,29 @@ BoundaryPoint MedialAxis::touching_point(const MaPoint& p, Side side) const {
   const MaEdge& e = edges_[p.edge.index()];
   BoundaryPoint bp;
   bp.site = side == Side::Left ? e.left : e.right;
+  // On a spread zone's side of its edges: the zone's point that project() maps here (the
+  // inverse of its proportional map), so that the mapping is one-to-one both ways.
+  for (const SpreadZone& z : zones_) {
+    double f = -1.0;
+    if (p.edge == z.e1 && bp.site == z.near1 && z.t1v != z.t1) {
+      const double u = (p.t - z.t1) / (z.t1v - z.t1);
+      if (u >= 0.0 && u <= 1.0) f = u * z.split;
+    } else if (p.edge == z.e2 && bp.site == z.near2 && z.t2 != z.t2v) {
+      const double u = (p.t - z.t2v) / (z.t2 - z.t2v);
+      if (u >= 0.0 && u <= 1.0) f = z.split + u * (1.0 - z.split);
+    }
+    if (f < 0.0) continue;
+    const double x = f * z.length;
+    const SpreadZone::Piece* at = &z.pieces.front();
+    for (const auto& piece : z.pieces)
+      if (piece.at <= x) at = &piece;
+    const Vec2 a = seg_start(polygon_, z.loop, at->segment);
+    const Vec2 b = seg_end(polygon_, z.loop, at->segment);
+    bp.site = {BoundarySite::Kind::Segment, z.loop, at->segment};
+    bp.s = std::clamp(at->s0 + (x - at->at) / distance(a, b), at->s0, at->s1);
+    bp.position = lerp(a, b, bp.s);
+    return bp;
+  }
   bp.position = site_foot(polygon_, bp.site, p.position, &bp.s);
   return bp;
 }
@@ -302,8 +474,7 @@ std::vector<BoundaryPoint> MedialAxis::touching_points(MaVertexId id) const {
 std::optional<BoundaryPoint> MedialAxis::opposite(const BoundaryPoint& p) const {
   const std::optional<MaPoint> m = project(p);
   if (!m || !m->edge.valid()) return std::nullopt;  // a disk's centre has no other side
-  const MaEdge& e = edges_[m->edge.index()];
-  return touching_point(*m, e.left == p.site ? Side::Right : Side::Left);
+  return touching_point(*m, far_side(*m, p));
 }
 
 std::vector<std::string> MedialAxis::validate() const {

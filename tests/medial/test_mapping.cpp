@@ -82,3 +82,44 @@ TEST_CASE("a reflex corner maps to a fan of MA points", "[medial][mapping]") {
   }
   CHECK_FALSE(ma.project_corner(0, 0, 0.5));  // a convex corner has no fan
 }
+
+TEST_CASE("a nearly flat corner's boundary spreads along the axis, one-to-one both ways",
+          "[medial][mapping]") {
+  // A 400 x 300 box whose bottom side dips by a 20-degree convex turn at x = 200: the corner is
+  // pruned (kFlatCornerTurn), and its stretch of boundary, which every normal misses, would
+  // all map to one MA point of radius ~170 (a fan of long rails, each wedge a sliver).
+  const double dip = 200.0 * std::tan(10.0 * 3.14159265358979323846 / 180.0);
+  const Polygon2 p = polygon({{{0, 0}, {200, -dip}, {400, 0}, {400, 300}, {0, 300}}});
+  const MedialAxis ma = compute_medial_axis(p);
+  std::vector<MaPoint> images;
+  int off_normal = 0;
+  for (int k = 0; k <= 40; ++k) {
+    const double x = 160.0 + 2.0 * k;  // across the corner, along the bottom
+    CAPTURE(x);
+    const BoundaryPoint b = x < 200.0 ? on_segment(p, 0, 0, x / 200.0)
+                                      : on_segment(p, 0, 1, (x - 200.0) / 200.0);
+    const auto m = ma.project(b);
+    REQUIRE(m);
+    REQUIRE(m->edge.valid());
+    off_normal += m->off_normal ? 1 : 0;
+    // Never into the disk: the boundary point is on or outside it.
+    CHECK(distance(b.position, m->position) >= m->radius - 1e-9);
+    // Across the axis: the top side, and back from there to the same MA point.
+    const Side far = ma.far_side(*m, b);
+    const BoundaryPoint q = ma.touching_point(*m, far);
+    CHECK(q.site == BoundarySite{BoundarySite::Kind::Segment, 0, 3});
+    const auto back = ma.project(q);
+    REQUIRE(back);
+    CHECK(distance(back->position, m->position) < 1e-9);
+    // And from the MA point back to the bottom: the point itself.
+    const BoundaryPoint near = ma.touching_point(*m, far == Side::Left ? Side::Right : Side::Left);
+    CHECK(distance(near.position, b.position) < 1e-9);
+    images.push_back(*m);
+  }
+  CHECK(off_normal > 10);
+  // Distinct MA points, in the boundary's order: no two rails from the stretch meet.
+  for (std::size_t i = 1; i < images.size(); ++i) {
+    CAPTURE(i);
+    CHECK(images[i].position.x > images[i - 1].position.x + 0.25);
+  }
+}

@@ -81,6 +81,10 @@ struct MaPoint {
   double t = 0.0;
   Vec2 position;
   double radius = 0.0;
+  /// Set by project() where the boundary point is not where this point's disk touches it, and
+  /// the rail between them leans: in a spread zone, or where a pruned corner's or arc's
+  /// boundary maps to one vertex (MedialAxis::project).
+  bool off_normal = false;
 };
 
 /// Which segment Voronoi diagram the medial axis is extracted from. Both give the same axis
@@ -141,7 +145,15 @@ class MedialAxis {
   /// a polygonised convex arc, whose branches were pruned, it is the vertex whose circle passes
   /// closest to p (the arc's centre, within the chord tolerance). Empty only when p is not on
   /// a segment or the axis has no vertex of positive radius.
+  /// In a spread zone (a pruned corner whose boundary would all map to one vertex where the
+  /// axis runs on both ways, docs/medial.md) the zone's boundary is mapped in proportion to
+  /// arc length onto the axis round that vertex, and the point is marked `spread`.
   std::optional<MaPoint> project(const BoundaryPoint& p) const;
+  /// The side of p's MA point m (from project) across the axis from p: the side whose site is
+  /// not p's own (in a spread zone, not the zone's site along m's edge).
+  Side far_side(const MaPoint& m, const BoundaryPoint& p) const;
+  /// True when p lies in a spread zone: its rail leans, longer than the radius at its MA point.
+  bool in_spread_zone(const BoundaryPoint& p) const { return zone_of(p) != nullptr; }
   /// Boundary -> MA at a reflex corner, whose maximal disks form a fan: w in [0, 1] sweeps the
   /// fan from the normal of the incoming segment (w = 0) to that of the outgoing one (w = 1).
   std::optional<MaPoint> project_corner(std::uint32_t loop, std::uint32_t vertex, double w) const;
@@ -168,6 +180,26 @@ class MedialAxis {
   std::vector<std::vector<MaEdgeId>> cells_;
   std::vector<std::size_t> loop_offset_;
   double size_ = 0.0;  ///< the polygon's bounding-box diagonal
+  /// A spread zone: loop pieces (segment, parameter range, arc length at its start), mapped
+  /// onto edge e1 from parameter t1 to the root vertex (t1v), then onto e2 from the root (t2v)
+  /// to t2; the first `split` of the zone's length goes to e1. near1 / near2: the zone's site
+  /// along e1 / e2.
+  struct SpreadZone {
+    struct Piece {
+      std::uint32_t segment = 0;
+      double s0 = 0.0, s1 = 0.0, at = 0.0;
+    };
+    std::uint32_t loop = 0;
+    std::vector<Piece> pieces;
+    double length = 0.0;
+    MaEdgeId e1, e2;
+    double t1 = 0.0, t1v = 0.0, t2v = 0.0, t2 = 0.0, split = 0.5;
+    BoundarySite near1, near2;
+  };
+  std::vector<SpreadZone> zones_;
+
+  void find_spread_zones();
+  const SpreadZone* zone_of(const BoundaryPoint& p) const;
 
   std::size_t cell_index(const BoundarySite& s) const;
   /// Parameter of x along edge e (unclamped), and the MA point there if x lies on the edge.
