@@ -1341,7 +1341,7 @@ QuadResult build_quads(const Part& part, const CutGraph& graph, const QuadOption
   return QuadBuilder(part, graph, options).run();
 }
 
-std::size_t flip_edges(const Part& part, QuadMesh& mesh) {
+std::size_t flip_edges(const Part& part, QuadMesh& mesh, std::vector<std::uint32_t>* flipped) {
   std::size_t flips = 0;
   const std::size_t nq = mesh.elements.size();
   auto jacobian = [&](const Frame& frame, const std::array<std::uint32_t, 4>& x) {
@@ -1414,6 +1414,7 @@ std::size_t flip_edges(const Part& part, QuadMesh& mesh) {
       e1.nodes = {h[d], h[d + 1], h[d + 2], h[(d + 3) % 6]};
       mesh.elements[best_other].nodes = {h[(d + 3) % 6], h[(d + 4) % 6], h[(d + 5) % 6], h[d]};
       touched[q] = touched[best_other] = true;
+      if (flipped) flipped->insert(flipped->end(), {q, best_other});
       ++done;
     }
     flips += done;
@@ -1422,13 +1423,30 @@ std::size_t flip_edges(const Part& part, QuadMesh& mesh) {
   return flips;
 }
 
-void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations) {
+void smooth_mesh(const Part& part,
+                 QuadMesh& mesh,
+                 int iterations,
+                 const std::vector<bool>* movable) {
   if (iterations <= 0) return;
   // Nodes used by elements of several patches, or on an edge used once in a patch, stay.
-  const std::vector<bool> pinned = pinned_nodes(mesh);
-  const std::vector<std::vector<std::uint32_t>> by_patch = elements_by_patch(part, mesh);
+  std::vector<bool> pinned = pinned_nodes(mesh);
+  std::vector<std::vector<std::uint32_t>> by_patch = elements_by_patch(part, mesh);
+  if (movable) {
+    for (std::size_t v = 0; v < pinned.size(); ++v) pinned[v] = pinned[v] || !(*movable)[v];
+    for (auto& elements : by_patch) {
+      elements.erase(std::remove_if(elements.begin(), elements.end(),
+                                    [&](std::uint32_t q) {
+                                      const auto& x = mesh.elements[q].nodes;
+                                      return std::none_of(x.begin(), x.end(), [&](std::uint32_t v) {
+                                        return (*movable)[v];
+                                      });
+                                    }),
+                     elements.end());
+    }
+  }
   // A patch's sweeps move only its own nodes (pinned nodes stay), so patches run in parallel.
   parallel_for(part.patches.size(), [&](std::size_t p) {
+    if (by_patch[p].empty()) return;
     const Frame& frame = part.patches[p].frame;
     PatchQuads pq = patch_quads(part, mesh, p, by_patch[p], pinned);
     const std::vector<Vec2> before = pq.pos;

@@ -65,8 +65,11 @@ QuadResult build_quads(const Part& part, const CutGraph& graph, const QuadOption
 /// another diagonal gives a worse quad better by 0.05, the pair is re-split along it (a flat
 /// corner at a boundary node that one quad meets gets an edge into the patch this way). Nodes,
 /// element count and the boundary are unchanged; no quad is made worse than the pair's worst.
-/// Edges in map order, each quad once a pass, up to four passes. Returns the flips made.
-std::size_t flip_edges(const Part& part, QuadMesh& mesh);
+/// Edges in map order, each quad once a pass, up to four passes. Returns the flips made;
+/// `flipped`, when given, receives the elements re-split.
+std::size_t flip_edges(const Part& part,
+                       QuadMesh& mesh,
+                       std::vector<std::uint32_t>* flipped = nullptr);
 
 /// Cavity re-fill (docs/mesher.md, "Cavity re-fill"), run after the flips and before the
 /// smoothing: round the worst quads below `below` of each patch (at most 32 + 1/50 of its
@@ -87,7 +90,11 @@ std::size_t refill_cavities(const Part& part,
 /// `iterations` Laplacian sweeps, as many of angle optimisation, then untangling sweeps over
 /// nodes of quads below 0.6, then strictly below 0.7. Nodes on B-Rep edges and seams never
 /// move; a move is kept only when no quad around the node falls below min(its scaled Jacobian
-/// before, 0.2), so no element is ever inverted.
-void smooth_mesh(const Part& part, QuadMesh& mesh, int iterations);
+/// before, 0.2), so no element is ever inverted. With `movable`, only the nodes it marks move,
+/// among the elements that use one (a local pass after a few late flips).
+void smooth_mesh(const Part& part,
+                 QuadMesh& mesh,
+                 int iterations,
+                 const std::vector<bool>* movable = nullptr);
 
 }  // namespace laytracks
