@@ -28,6 +28,8 @@ constexpr double kSpreadReach = 1.0;
 /// A spread zone is made only where the axis beside its root (the image of the reaches) is at
 /// least this x the stretch's length: the stretch is taken at most 2:1.
 constexpr double kMinSpreadImage = 0.5;
+/// Nor where either reach is below this x the stretch's length.
+constexpr double kMinSpreadReach = 0.01;
 /// validate() compares radii against a brute-force distance to every segment; above this many
 /// vertex x segment pairs it checks an evenly spread subset of the vertices.
 constexpr double kBruteForceBudget = 5e7;
@@ -177,7 +179,10 @@ void MedialAxis::find_spread_zones() {
                                  0.5 * std::max(0.0, a.hi - other_foot(a.hi_edge, i)) * a.len);
       const double d2 = std::min(kSpreadReach * length,
                                  0.5 * std::max(0.0, other_foot(b.lo_edge, k) - b.lo) * b.len);
-      if (d1 <= eps || d2 <= eps) continue;
+      // A reach of almost nothing is an edge of almost nothing beside the root (rounding split
+      // a branch point: cgal_wheel_16_spokes has one at 8 of its 16 spoke ends, 6e-6 long): the
+      // zone would spread the stretch on one side only.
+      if (d1 <= eps || d2 <= eps || std::min(d1, d2) < kMinSpreadReach * length) continue;
       const double s1 = a.hi - d1 / a.len, s2 = b.lo + d2 / b.len;
       z.pieces.push_back({i, s1, 1.0, 0.0});
       double at = (1.0 - s1) * a.len;
