@@ -29,7 +29,7 @@ constexpr double kSpreadReach = 1.0;
 /// least this x the stretch's length: the stretch is taken at most 2:1.
 constexpr double kMinSpreadImage = 0.5;
 /// Nor where either reach is below this x the stretch's length.
-constexpr double kMinSpreadReach = 0.01;
+constexpr double kMinSpreadReach = 1e-3;
 /// validate() compares radii against a brute-force distance to every segment; above this many
 /// vertex x segment pairs it checks an evenly spread subset of the vertices.
 constexpr double kBruteForceBudget = 5e7;
