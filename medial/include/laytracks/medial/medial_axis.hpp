@@ -147,7 +147,7 @@ class MedialAxis {
   /// a segment or the axis has no vertex of positive radius.
   /// In a spread zone (a pruned corner whose boundary would all map to one vertex where the
   /// axis runs on both ways, docs/medial.md) the zone's boundary is mapped in proportion to
-  /// arc length onto the axis round that vertex, and the point is marked `spread`.
+  /// arc length onto the axis round that vertex, and the point is marked `off_normal`.
   std::optional<MaPoint> project(const BoundaryPoint& p) const;
   /// The side of p's MA point m (from project) across the axis from p: the side whose site is
   /// not p's own (in a spread zone, not the zone's site along m's edge).
