@@ -207,10 +207,7 @@ class RailLayer {
   void lay_rail(CutVertId cid) {
     const CutVert c = g_.cuts[cid.index()];
     const PatchId p = c.patch;
-    BoundaryPoint bp;
-    bp.site = {BoundarySite::Kind::Segment, c.at.loop, c.at.segment};
-    bp.s = c.at.s;
-    bp.position = c.position;
+    const BoundaryPoint bp = c.on_segment();
     if (c.at.s == 0.0 && g_.gverts[c.g.index()].vertex) {
       const int turn = corner_turn(part_, p, c.at.loop, c.at.segment);
       if (turn != 0) return;  // a rail ends at a corner: concave (fan) or convex (length 0)

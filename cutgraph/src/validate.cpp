@@ -82,11 +82,7 @@ std::vector<std::string> validate_cut_graph(const Part& part,
     // A rail to or from a spread zone, or into the vertex a pruned corner maps to
     // (MedialAxis::project), leans too, but never into the disk.
     const double length = distance(c.position, m.point.position);
-    BoundaryPoint at;
-    at.site = {BoundarySite::Kind::Segment, c.at.loop, c.at.segment};
-    at.s = c.at.s;
-    at.position = c.position;
-    const bool spread = m.point.off_normal || ma.in_spread_zone(at);
+    const bool spread = m.point.off_normal || ma.in_spread_zone(c.on_segment());
     if (spread ? length < m.point.radius - tol
                : !s.leans && std::fabs(length - m.point.radius) > tol + part.chord_tol) {
       problems.push_back("a rail segment on " + part.patch_label(c.patch) +

@@ -130,8 +130,16 @@ void MedialAxis::find_spread_zones() {
         const MaEdge& e = edges_[id.index()];
         for (MaVertexId v : {e.a, e.b}) {
           const double f = segment_param(polygon_, seg, vertices_[v.index()].position);
-          if (f < c.lo) c = Cover{f, c.hi, id, c.hi_edge, v, c.hi_vertex, c.len};
-          if (f > c.hi) c = Cover{c.lo, f, c.lo_edge, id, c.lo_vertex, v, c.len};
+          if (f < c.lo) {
+            c.lo = f;
+            c.lo_edge = id;
+            c.lo_vertex = v;
+          }
+          if (f > c.hi) {
+            c.hi = f;
+            c.hi_edge = id;
+            c.hi_vertex = v;
+          }
         }
       }
     }
@@ -211,12 +219,23 @@ void MedialAxis::find_spread_zones() {
       zones_.push_back(std::move(z));
     }
   }
+  zones_on_segment_.assign(loop_offset_.back(), {});
+  zones_on_edge_.assign(edges_.size(), {});
+  for (std::uint32_t i = 0; i < zones_.size(); ++i) {
+    const SpreadZone& z = zones_[i];
+    for (const auto& piece : z.pieces) {
+      auto& on = zones_on_segment_[loop_offset_[z.loop] + piece.segment];
+      if (on.empty() || on.back() != i) on.push_back(i);
+    }
+    zones_on_edge_[z.e1.index()].push_back(i);
+    if (z.e2 != z.e1) zones_on_edge_[z.e2.index()].push_back(i);
+  }
 }
 
 const MedialAxis::SpreadZone* MedialAxis::zone_of(const BoundaryPoint& p) const {
-  if (p.site.kind != BoundarySite::Kind::Segment) return nullptr;
-  for (const SpreadZone& z : zones_) {
-    if (z.loop != p.site.loop) continue;
+  if (zones_.empty() || p.site.kind != BoundarySite::Kind::Segment) return nullptr;
+  for (std::uint32_t i : zones_on_segment_[loop_offset_[p.site.loop] + p.site.index]) {
+    const SpreadZone& z = zones_[i];
     for (const auto& piece : z.pieces) {
       if (piece.segment == p.site.index && p.s >= piece.s0 && p.s <= piece.s1) return &z;
     }
@@ -433,7 +452,8 @@ BoundaryPoint MedialAxis::touching_point(const MaPoint& p, Side side) const {
   bp.site = side == Side::Left ? e.left : e.right;
   // On a spread zone's side of its edges: the zone's point that project() maps here (the
   // inverse of its proportional map), so that the mapping is one-to-one both ways.
-  for (const SpreadZone& z : zones_) {
+  for (std::uint32_t i : zones_on_edge_[p.edge.index()]) {
+    const SpreadZone& z = zones_[i];
     double f = -1.0;
     if (p.edge == z.e1 && bp.site == z.near1 && z.t1v != z.t1) {
       const double u = (p.t - z.t1) / (z.t1v - z.t1);

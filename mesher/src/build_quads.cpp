@@ -541,12 +541,6 @@ class QuadBuilder {
     std::size_t merged = 0;
     std::vector<std::uint32_t> target(g.nodes.size(), kNone);
     std::vector<bool> taken(ma_nodes.size(), false);
-    const auto crosses = [&](Vec2 p, Vec2 q, Vec2 r, Vec2 t) {
-      const double d1 = cross(q - p, r - p), d2 = cross(q - p, t - p);
-      const double d3 = cross(t - r, p - r), d4 = cross(t - r, q - r);
-      return ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) &&
-             ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0));
-    };
     for (std::size_t oi = 0; oi < order.size(); ++oi) {
       const std::size_t c = std::get<2>(order[oi]);
       if (taken[c]) continue;
@@ -572,7 +566,7 @@ class QuadBuilder {
         for (std::size_t j = 0; j < g.edges.size() && !clash; ++j) {
           const CEdge& f = g.edges[j];
           if (j == i || !f.rail) continue;
-          clash = crosses(a, b, g.nodes[f.a].p, end_of(f));
+          clash = mesher_detail::segments_meet(a, b, g.nodes[f.a].p, end_of(f));
         }
       }
       for (std::size_t m : members) {

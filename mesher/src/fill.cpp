@@ -461,11 +461,15 @@ bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t, int d1, int d2, int d3, int d
   return d1 * d2 <= 0 && d3 * d4 <= 0;
 }
 
+}  // namespace
+
 bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t) {
   if (p == r || p == t || q == r || q == t) return false;
   return segments_meet(p, q, r, t, side_of(p, q, r), side_of(p, q, t), side_of(r, t, p),
                        side_of(r, t, q));
 }
+
+namespace {
 
 bool inside_polygon(Vec2 x, const std::vector<Vec2>& poly) {
   bool in = false;
@@ -816,7 +820,7 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
     for (std::uint32_t k = 0; k < n; ++k) {
       const std::uint32_t k1 = (k + 1) % n;
       if (k == i || k == j || k1 == i || k1 == j) continue;
-      if (segments_meet(p, q, poly[k], poly[k1])) return true;
+      if (mesher_detail::segments_meet(p, q, poly[k], poly[k1])) return true;
     }
     return false;
   };

@@ -84,6 +84,10 @@ constexpr double kLocalGrid = 1.0 / 1048576.0;
 /// Smallest scaled Jacobian over the four corners of quad abcd (counter-clockwise > 0).
 double min_scaled_jacobian(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
 
+/// True when the open segments pq and rt cross or touch (a shared end point does not count;
+/// collinear ones only when they overlap, within rounding).
+bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t);
+
 /// Meshes one face: the first template that applies and gives quads whose scaled Jacobian is
 /// above kAcceptJacobian wins; otherwise the best valid one. Throws InternalError (with `where`
 /// in the message) when no template gives valid quads.

@@ -42,6 +42,11 @@ struct CutVert {
   PatchId patch;
   LoopPoint at;
   Vec2 position;  ///< in the patch frame
+
+  /// This point as a point of its segment of the loop (what the medial mapping takes).
+  BoundaryPoint on_segment() const {
+    return {{BoundarySite::Kind::Segment, at.loop, at.segment}, at.s, position};
+  }
 };
 
 /// A point of a patch's medial axis where a rail meets it.

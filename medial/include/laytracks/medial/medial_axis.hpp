@@ -197,6 +197,9 @@ class MedialAxis {
     BoundarySite near1, near2;
   };
   std::vector<SpreadZone> zones_;
+  /// Indices into zones_, ascending: per segment (by cell_index / 2) the zones with a piece on
+  /// it, per edge the zones mapped onto it (project and touching_point look up only these).
+  std::vector<std::vector<std::uint32_t>> zones_on_segment_, zones_on_edge_;
 
   void find_spread_zones();
   const SpreadZone* zone_of(const BoundaryPoint& p) const;
