@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "sites.hpp"
@@ -30,6 +31,11 @@ constexpr double kSpreadReach = 1.0;
 constexpr double kMinSpreadImage = 0.5;
 /// Nor where either reach is below this x the stretch's length.
 constexpr double kMinSpreadReach = 1e-3;
+/// An extended zone's image (find_spread_zones) ends at most this fraction of the way to a
+/// vertex whose axis another zone of its side may take ...
+constexpr double kSpreadShare = 0.45;
+/// ... and at most this fraction of the way to a branch point.
+constexpr double kSpreadToBranch = 0.75;
 /// validate() compares radii against a brute-force distance to every segment; above this many
 /// vertex x segment pairs it checks an evenly spread subset of the vertices.
 constexpr double kBruteForceBudget = 5e7;
@@ -111,17 +117,19 @@ MedialAxis::MedialAxis(Polygon2 polygon, std::vector<MaVertex> vertices, std::ve
 
 void MedialAxis::find_spread_zones() {
   const double eps = kLocateRel * size_;
+  // Per segment: the parameter range its cell's edges touch, and the edge and vertex at each
+  // end of it (lo > hi: no edge at all, the whole segment is uncovered).
+  struct Cover {
+    double lo = INFINITY, hi = -INFINITY;
+    MaEdgeId lo_edge, hi_edge;
+    MaVertexId lo_vertex, hi_vertex;
+    double len = 0.0;
+  };
+  std::vector<std::vector<Cover>> covers(polygon_.loops.size());
   for (std::uint32_t l = 0; l < polygon_.loops.size(); ++l) {
     const auto n = static_cast<std::uint32_t>(polygon_.loops[l].size());
-    // Per segment: the parameter range its cell's edges touch, and the edge and vertex at each
-    // end of it (lo > hi: no edge at all, the whole segment is uncovered).
-    struct Cover {
-      double lo = INFINITY, hi = -INFINITY;
-      MaEdgeId lo_edge, hi_edge;
-      MaVertexId lo_vertex, hi_vertex;
-      double len = 0.0;
-    };
-    std::vector<Cover> cover(n);
+    std::vector<Cover>& cover = covers[l];
+    cover.resize(n);
     for (std::uint32_t i = 0; i < n; ++i) {
       const BoundarySite seg{BoundarySite::Kind::Segment, l, i};
       Cover& c = cover[i];
@@ -143,27 +151,187 @@ void MedialAxis::find_spread_zones() {
         }
       }
     }
+  }
+  // The uncovered stretches: from the end of segment i's covered range through wholly
+  // uncovered segments (`whole`) to the start of segment k's, and the vertex both ends map to
+  // (invalid when they map to different vertices).
+  struct Stretch {
+    std::uint32_t i = 0, k = 0;
+    std::vector<std::uint32_t> whole;
+    double length = 0.0;
+    MaVertexId root;
+  };
+  std::vector<std::vector<Stretch>> stretches(polygon_.loops.size());
+  for (std::uint32_t l = 0; l < polygon_.loops.size(); ++l) {
+    const auto n = static_cast<std::uint32_t>(polygon_.loops[l].size());
+    const std::vector<Cover>& cover = covers[l];
     for (std::uint32_t i = 0; i < n; ++i) {
       const Cover& a = cover[i];
       if (!(a.lo <= a.hi) || a.len <= 0.0 || (1.0 - a.hi) * a.len <= eps) continue;
-      // An uncovered end: walk on through uncovered segments to the next covered start.
-      SpreadZone z;
-      z.loop = l;
-      double length = (1.0 - a.hi) * a.len;
+      Stretch st;
+      st.i = i;
+      st.length = (1.0 - a.hi) * a.len;
       std::uint32_t k = (i + 1) % n;
-      std::vector<std::uint32_t> whole;
       for (std::uint32_t step = 0; step < n && !(cover[k].lo <= cover[k].hi); ++step) {
-        whole.push_back(k);
-        length += cover[k].len;
+        st.whole.push_back(k);
+        st.length += cover[k].len;
         k = (k + 1) % n;
       }
       const Cover& b = cover[k];
       if (k == i || !(b.lo <= b.hi) || b.lo * b.len <= eps) continue;
-      length += b.lo * b.len;
+      st.k = k;
+      st.length += b.lo * b.len;
+      if (b.lo_vertex == a.hi_vertex) st.root = a.hi_vertex;
+      stretches[l].push_back(std::move(st));
+    }
+  }
+  // A zone whose image on the root's own two edges is too short (kMinSpreadImage) may take
+  // more of the axis (docs/medial.md, "Extended zones"): from the root the walk goes on
+  // through every vertex of degree 2 where the zone's side keeps its segment (only the far
+  // side's site changes there: a corner over there, whose own zone maps that side only), and
+  // stops at the first other vertex. The image ends at most kSpreadShare of the way to a stop
+  // whose axis another zone of this side may take (a vertex where this side's segment changes:
+  // a corner of this side maps there; a leaf), at most kSpreadToBranch of the way to a branch
+  // point (whose touching point on this side starts a source rail), and at most kSpreadReach
+  // x the stretch's length from the root. The zone is then the boundary whose normals meet
+  // the axis between the two ends, with the stretch, mapped in proportion to arc length; it is
+  // made when the image is at least kMinSpreadImage x the stretch's length. Every zone that
+  // the root's own edges can take stays as it was.
+  const auto extended = [&](std::uint32_t l, const Stretch& st, const Cover& a, const Cover& b,
+                            const std::vector<Cover>& cover) -> std::optional<SpreadZone> {
+    const auto n = static_cast<std::uint32_t>(polygon_.loops[l].size());
+    struct Walked {
+      MaEdgeId edge;
+      MaVertexId from;
+      double len = 0.0;
+    };
+    // From the root along `first`, whose site on the zone's side is `near`.
+    const auto walk = [&](MaEdgeId first, const BoundarySite& near, double& share) {
+      std::vector<Walked> path;
+      MaEdgeId e = first;
+      MaVertexId from = st.root;
+      share = kSpreadShare;
+      while (path.size() < edges_.size()) {
+        const MaEdge& ed = edges_[e.index()];
+        const MaVertexId to = ed.a == from ? ed.b : ed.a;
+        path.push_back({e, from, distance(vertices_[from.index()].position,
+                                          vertices_[to.index()].position)});
+        const MaVertex& v = vertices_[to.index()];
+        if (v.degree != 2 || !(v.radius > 0.0)) {
+          if (v.degree >= 3) share = kSpreadToBranch;
+          break;
+        }
+        const auto& inc = incident_[to.index()];
+        const MaEdgeId next = inc[0] == e ? inc[1] : inc[0];
+        const MaEdge& nx = edges_[next.index()];
+        if (nx.left != near && nx.right != near) break;
+        from = to;
+        e = next;
+      }
+      return path;
+    };
+    struct End {
+      std::size_t last = 0;  ///< the path's edge the image ends on
+      double t = 0.0;        ///< there
+      double image = 0.0;    ///< axis length from the root (chords of the edges)
+      double s = 0.0;        ///< the foot of that point on the zone's side
+    };
+    const auto image_end = [&](const std::vector<Walked>& path, const BoundarySite& near,
+                               double share) -> std::optional<End> {
+      double total = 0.0;
+      for (const Walked& w : path) total += w.len;
+      const double want = std::min(kSpreadReach * st.length, share * total);
+      if (!(want > eps)) return std::nullopt;
+      double before = 0.0;
+      for (std::size_t j = 0; j < path.size(); ++j) {
+        const Walked& w = path[j];
+        if (before + w.len < want && j + 1 < path.size()) {
+          before += w.len;
+          continue;
+        }
+        double q = w.len > 0.0 ? std::clamp((want - before) / w.len, 0.0, 1.0) : 1.0;
+        if (j + 1 == path.size()) q = std::min(q, share);  // also in the edge's own measure
+        End end;
+        const double t_from = edges_[w.edge.index()].a == w.from ? 0.0 : 1.0;
+        end.last = j;
+        end.t = t_from + (1.0 - 2.0 * t_from) * q;
+        end.image = before + q * w.len;
+        end.s = std::clamp(
+            segment_param(polygon_, near, point_on_edge(w.edge, end.t).position), 0.0, 1.0);
+        return end;
+      }
+      return std::nullopt;
+    };
+    const BoundarySite near1{BoundarySite::Kind::Segment, l, st.i};
+    const BoundarySite near2{BoundarySite::Kind::Segment, l, st.k};
+    double share1 = 0.0, share2 = 0.0;
+    const std::vector<Walked> p1 = walk(a.hi_edge, near1, share1);
+    const std::vector<Walked> p2 = walk(b.lo_edge, near2, share2);
+    const std::optional<End> end1 = image_end(p1, near1, share1);
+    const std::optional<End> end2 = image_end(p2, near2, share2);
+    if (!end1 || !end2 || end1->image + end2->image < kMinSpreadImage * st.length)
+      return std::nullopt;
+    if (st.whole.size() + 2 > n) return std::nullopt;
+    SpreadZone z;
+    z.loop = l;
+    z.pieces.push_back({st.i, end1->s, 1.0, 0.0});
+    double at = (1.0 - end1->s) * a.len;
+    const double d1 = (a.hi - end1->s) * a.len;
+    for (std::uint32_t w : st.whole) {
+      z.pieces.push_back({w, 0.0, 1.0, at});
+      at += cover[w].len;
+    }
+    z.pieces.push_back({st.k, 0.0, end2->s, at});
+    const double d2 = (end2->s - b.lo) * b.len;
+    z.length = at + end2->s * b.len;
+    // As for a zone on the root's edges: no reach of almost nothing.
+    if (d1 <= eps || d2 <= eps || std::min(d1, d2) < kMinSpreadReach * st.length)
+      return std::nullopt;
+    // Side 1 from its end to the root, then side 2 from the root to its end, each edge taking
+    // the zone's fractions in proportion to its chord.
+    const double image = end1->image + end2->image;
+    double done = 0.0;
+    const auto step = [&](const Walked& w, const BoundarySite& near, double t0, double t1,
+                          double len) {
+      const double f0 = done / image;
+      done += len;
+      z.steps.push_back({w.edge, t0, t1, f0, std::min(1.0, done / image), near});
+    };
+    double before = 0.0;
+    for (std::size_t j = 0; j < end1->last; ++j) before += p1[j].len;
+    for (std::size_t j = end1->last + 1; j-- > 0;) {
+      const Walked& w = p1[j];
+      const double t_root = edges_[w.edge.index()].a == w.from ? 0.0 : 1.0;
+      if (j == end1->last)
+        step(w, near1, end1->t, t_root, end1->image - before);
+      else
+        step(w, near1, 1.0 - t_root, t_root, w.len);
+    }
+    before = 0.0;
+    for (std::size_t j = 0; j <= end2->last; ++j) {
+      const Walked& w = p2[j];
+      const double t_root = edges_[w.edge.index()].a == w.from ? 0.0 : 1.0;
+      const bool last = j == end2->last;
+      step(w, near2, t_root, last ? end2->t : 1.0 - t_root, last ? end2->image - before : w.len);
+      before += w.len;
+    }
+    z.steps.back().f1 = 1.0;
+    return z;
+  };
+  for (std::uint32_t l = 0; l < polygon_.loops.size(); ++l) {
+    const std::vector<Cover>& cover = covers[l];
+    for (const Stretch& st : stretches[l]) {
+      const std::uint32_t i = st.i, k = st.k;
+      const Cover& a = cover[i];
+      SpreadZone z;
+      z.loop = l;
+      const double length = st.length;
+      const std::vector<std::uint32_t>& whole = st.whole;
+      const Cover& b = cover[k];
       // Both ends at one vertex of degree 2, whose two edges hold the ends: the axis runs on
       // both ways from the vertex the whole stretch maps to.
-      const MaVertexId root = a.hi_vertex;
-      if (b.lo_vertex != root || vertices_[root.index()].degree != 2 ||
+      const MaVertexId root = st.root;
+      if (!root.valid() || vertices_[root.index()].degree != 2 ||
           a.hi_edge == b.lo_edge || !(vertices_[root.index()].radius > 0.0))
         continue;
       // Parameter along an edge of a segment's foot there: linear (a line's t follows arc
@@ -200,22 +368,25 @@ void MedialAxis::find_spread_zones() {
       }
       z.pieces.push_back({k, 0.0, s2, at});
       z.length = at + s2 * b.len;
-      z.e1 = a.hi_edge;
-      z.e2 = b.lo_edge;
-      z.t1 = t_at(z.e1, i, s1);
-      z.t1v = edges_[z.e1.index()].a == root ? 0.0 : 1.0;
-      z.t2v = edges_[z.e2.index()].a == root ? 0.0 : 1.0;
-      z.t2 = t_at(z.e2, k, s2);
+      const MaEdgeId e1 = a.hi_edge, e2 = b.lo_edge;
+      const double t1 = t_at(e1, i, s1);
+      const double t1v = edges_[e1.index()].a == root ? 0.0 : 1.0;
+      const double t2v = edges_[e2.index()].a == root ? 0.0 : 1.0;
+      const double t2 = t_at(e2, k, s2);
       const Vec2 r = vertices_[root.index()].position;
-      const double l1 = distance(point_on_edge(z.e1, z.t1).position, r);
-      const double l2 = distance(point_on_edge(z.e2, z.t2).position, r);
+      const double l1 = distance(point_on_edge(e1, t1).position, r);
+      const double l2 = distance(point_on_edge(e2, t2).position, r);
       if (!(l1 + l2 > eps)) continue;
-      // Too little axis beside the root to take the stretch (an arc's centre, where the axis
-      // ends in short pieces): the fan stays, for the mesher's round-fan rules.
-      if (l1 + l2 < kMinSpreadImage * length) continue;
-      z.split = l1 / (l1 + l2);
-      z.near1 = {BoundarySite::Kind::Segment, l, i};
-      z.near2 = {BoundarySite::Kind::Segment, l, k};
+      if (l1 + l2 < kMinSpreadImage * length) {
+        // Too little axis on the root's own edges: the image may go on along the axis
+        // (`extended`), else the fan stays.
+        if (std::optional<SpreadZone> ez = extended(l, st, a, b, cover))
+          zones_.push_back(std::move(*ez));
+        continue;
+      }
+      const double split = l1 / (l1 + l2);
+      z.steps.push_back({e1, t1, t1v, 0.0, split, {BoundarySite::Kind::Segment, l, i}});
+      z.steps.push_back({e2, t2v, t2, split, 1.0, {BoundarySite::Kind::Segment, l, k}});
       zones_.push_back(std::move(z));
     }
   }
@@ -227,8 +398,10 @@ void MedialAxis::find_spread_zones() {
       auto& on = zones_on_segment_[loop_offset_[z.loop] + piece.segment];
       if (on.empty() || on.back() != i) on.push_back(i);
     }
-    zones_on_edge_[z.e1.index()].push_back(i);
-    if (z.e2 != z.e1) zones_on_edge_[z.e2.index()].push_back(i);
+    for (const auto& step : z.steps) {
+      auto& on = zones_on_edge_[step.edge.index()];
+      if (on.empty() || on.back() != i) on.push_back(i);
+    }
   }
 }
 
@@ -248,8 +421,13 @@ Side MedialAxis::far_side(const MaPoint& m, const BoundaryPoint& p) const {
   if (e.left == p.site) return Side::Right;
   if (e.right == p.site) return Side::Left;
   if (const SpreadZone* z = zone_of(p)) {
-    const BoundarySite& near = m.edge == z->e1 ? z->near1 : z->near2;
-    return e.left == near ? Side::Right : Side::Left;
+    const BoundarySite* near = &z->steps.back().near;
+    for (const auto& step : z->steps)
+      if (step.edge == m.edge) {
+        near = &step.near;
+        break;
+      }
+    return e.left == *near ? Side::Right : Side::Left;
   }
   return Side::Left;
 }
@@ -361,10 +539,13 @@ std::optional<MaPoint> MedialAxis::project(const BoundaryPoint& bp) const {
       break;
     }
     const double f = std::clamp(x / z->length, 0.0, 1.0);
-    MaPoint m = f <= z->split
-                    ? point_on_edge(z->e1, z->t1 + (z->t1v - z->t1) * (f / z->split))
-                    : point_on_edge(z->e2, z->t2v + (z->t2 - z->t2v) * ((f - z->split) /
-                                                                          (1.0 - z->split)));
+    const SpreadZone::Step* on = &z->steps.back();
+    for (const auto& step : z->steps)
+      if (f <= step.f1) {
+        on = &step;
+        break;
+      }
+    MaPoint m = point_on_edge(on->edge, on->t0 + (on->t1 - on->t0) * ((f - on->f0) / (on->f1 - on->f0)));
     m.off_normal = true;
     return m;
   }
@@ -455,12 +636,11 @@ BoundaryPoint MedialAxis::touching_point(const MaPoint& p, Side side) const {
   for (std::uint32_t i : zones_on_edge_[p.edge.index()]) {
     const SpreadZone& z = zones_[i];
     double f = -1.0;
-    if (p.edge == z.e1 && bp.site == z.near1 && z.t1v != z.t1) {
-      const double u = (p.t - z.t1) / (z.t1v - z.t1);
-      if (u >= 0.0 && u <= 1.0) f = u * z.split;
-    } else if (p.edge == z.e2 && bp.site == z.near2 && z.t2 != z.t2v) {
-      const double u = (p.t - z.t2v) / (z.t2 - z.t2v);
-      if (u >= 0.0 && u <= 1.0) f = z.split + u * (1.0 - z.split);
+    for (const auto& step : z.steps) {
+      if (p.edge != step.edge || bp.site != step.near || step.t1 == step.t0) continue;
+      const double u = (p.t - step.t0) / (step.t1 - step.t0);
+      if (u >= 0.0 && u <= 1.0) f = step.f0 + u * (step.f1 - step.f0);
+      break;
     }
     if (f < 0.0) continue;
     const double x = f * z.length;

@@ -123,3 +123,46 @@ TEST_CASE("a nearly flat corner's boundary spreads along the axis, one-to-one bo
     CHECK(images[i].position.x > images[i - 1].position.x + 0.25);
   }
 }
+
+TEST_CASE("a flat corner's zone goes on along the axis where the other side's corners cut it short",
+          "[medial][mapping]") {
+  // The box of the test above, its top bent up by 0.6 degrees at x = 190 and x = 210: those
+  // corners are pruned too, and the axis above the dip gets vertices at about x = 190 and 210
+  // (the top's segment changes there). The dip's stretch (about 60 long) would have only the
+  // root's two 10-long edges, too short to take it (kMinSpreadImage); the zone goes on through
+  // those vertices, where only the top's site changes, towards the branch points.
+  const double dip = 200.0 * std::tan(10.0 * 3.14159265358979323846 / 180.0);
+  const Polygon2 p =
+      polygon({{{0, 0}, {200, -dip}, {400, 0}, {400, 300}, {210, 302}, {190, 302}, {0, 300}}});
+  const MedialAxis ma = compute_medial_axis(p);
+  std::vector<MaPoint> images;
+  for (int k = 0; k <= 40; ++k) {
+    const double x = 170.0 + 1.5 * k;  // across the corner, along the bottom
+    CAPTURE(x);
+    const BoundaryPoint b = x < 200.0 ? on_segment(p, 0, 0, x / 200.0)
+                                      : on_segment(p, 0, 1, (x - 200.0) / 200.0);
+    const auto m = ma.project(b);
+    REQUIRE(m);
+    REQUIRE(m->edge.valid());
+    CHECK(distance(b.position, m->position) >= m->radius - 1e-9);
+    // Across the axis to the top (one of its three segments), back to the same MA point, and
+    // from there to the bottom point itself.
+    const Side far = ma.far_side(*m, b);
+    const BoundaryPoint q = ma.touching_point(*m, far);
+    CHECK(q.site.index >= 3);
+    CHECK(q.position.y > 299.0);
+    const auto back = ma.project(q);
+    REQUIRE(back);
+    CHECK(distance(back->position, m->position) < 1e-9);
+    const BoundaryPoint near = ma.touching_point(*m, far == Side::Left ? Side::Right : Side::Left);
+    CHECK(distance(near.position, b.position) < 1e-9);
+    images.push_back(*m);
+  }
+  // Distinct MA points in the boundary's order, and more of the axis than the root's two
+  // edges (x 190 to 210): the stretch is spread, not a fan into one point.
+  for (std::size_t i = 1; i < images.size(); ++i) {
+    CAPTURE(i);
+    CHECK(images[i].position.x > images[i - 1].position.x + 0.25);
+  }
+  CHECK(images.back().position.x - images.front().position.x > 20.0);
+}

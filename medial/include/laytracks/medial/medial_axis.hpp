@@ -189,12 +189,18 @@ class MedialAxis {
       std::uint32_t segment = 0;
       double s0 = 0.0, s1 = 0.0, at = 0.0;
     };
+    /// A piece of the axis image: edge `edge` from t0 to t1 takes the zone's fractions f0 to
+    /// f1 of its boundary length; `near` is the edge's site on the zone's side.
+    struct Step {
+      MaEdgeId edge;
+      double t0 = 0.0, t1 = 0.0, f0 = 0.0, f1 = 0.0;
+      BoundarySite near;
+    };
     std::uint32_t loop = 0;
     std::vector<Piece> pieces;
     double length = 0.0;
-    MaEdgeId e1, e2;
-    double t1 = 0.0, t1v = 0.0, t2v = 0.0, t2 = 0.0, split = 0.5;
-    BoundarySite near1, near2;
+    /// From the image's end on the first side, through the root, to its end on the second.
+    std::vector<Step> steps;
   };
   std::vector<SpreadZone> zones_;
   /// Indices into zones_, ascending: per segment (by cell_index / 2) the zones with a piece on
