@@ -1,6 +1,8 @@
 // The two-way mapping boundary -> MA -> other boundary, tested directly.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include "medial_test_util.hpp"
 
 using namespace laytracks;
@@ -83,6 +85,43 @@ TEST_CASE("a reflex corner maps to a fan of MA points", "[medial][mapping]") {
   CHECK_FALSE(ma.project_corner(0, 0, 0.5));  // a convex corner has no fan
 }
 
+/// The images of the bottom points x = x0, x0 + dx, ... (n of them, across a dip at x = 200 of
+/// a box's bottom: segment 0 before it, 1 after) under project(), each checked to map one-to-one
+/// both ways: never into the disk, across to the top and back to the same MA
+/// point, and from it back to the bottom point itself. The images must be distinct and in the
+/// boundary's order: no two rails from the stretch meet. The top is segments top0 to top1.
+static std::vector<MaPoint> images_across_dip(const Polygon2& p, const MedialAxis& ma, double x0,
+                                              double dx, int n, std::uint32_t top0,
+                                              std::uint32_t top1) {
+  std::vector<MaPoint> images;
+  for (int k = 0; k < n; ++k) {
+    const double x = x0 + dx * k;
+    CAPTURE(x);
+    const BoundaryPoint b = x < 200.0 ? on_segment(p, 0, 0, x / 200.0)
+                                      : on_segment(p, 0, 1, (x - 200.0) / 200.0);
+    const auto m = ma.project(b);
+    REQUIRE(m);
+    REQUIRE(m->edge.valid());
+    CHECK(distance(b.position, m->position) >= m->radius - 1e-9);
+    const Side far = ma.far_side(*m, b);
+    const BoundaryPoint q = ma.touching_point(*m, far);
+    CHECK(q.site.kind == BoundarySite::Kind::Segment);
+    CHECK(q.site.index >= top0);
+    CHECK(q.site.index <= top1);
+    const auto back = ma.project(q);
+    REQUIRE(back);
+    CHECK(distance(back->position, m->position) < 1e-9);
+    const BoundaryPoint near = ma.touching_point(*m, far == Side::Left ? Side::Right : Side::Left);
+    CHECK(distance(near.position, b.position) < 1e-9);
+    images.push_back(*m);
+  }
+  for (std::size_t i = 1; i < images.size(); ++i) {
+    CAPTURE(i);
+    CHECK(images[i].position.x > images[i - 1].position.x + 0.25);
+  }
+  return images;
+}
+
 TEST_CASE("a nearly flat corner's boundary spreads along the axis, one-to-one both ways",
           "[medial][mapping]") {
   // A 400 x 300 box whose bottom side dips by a 20-degree convex turn at x = 200: the corner is
@@ -91,37 +130,9 @@ TEST_CASE("a nearly flat corner's boundary spreads along the axis, one-to-one bo
   const double dip = 200.0 * std::tan(10.0 * 3.14159265358979323846 / 180.0);
   const Polygon2 p = polygon({{{0, 0}, {200, -dip}, {400, 0}, {400, 300}, {0, 300}}});
   const MedialAxis ma = compute_medial_axis(p);
-  std::vector<MaPoint> images;
-  int off_normal = 0;
-  for (int k = 0; k <= 40; ++k) {
-    const double x = 160.0 + 2.0 * k;  // across the corner, along the bottom
-    CAPTURE(x);
-    const BoundaryPoint b = x < 200.0 ? on_segment(p, 0, 0, x / 200.0)
-                                      : on_segment(p, 0, 1, (x - 200.0) / 200.0);
-    const auto m = ma.project(b);
-    REQUIRE(m);
-    REQUIRE(m->edge.valid());
-    off_normal += m->off_normal ? 1 : 0;
-    // Never into the disk: the boundary point is on or outside it.
-    CHECK(distance(b.position, m->position) >= m->radius - 1e-9);
-    // Across the axis: the top side, and back from there to the same MA point.
-    const Side far = ma.far_side(*m, b);
-    const BoundaryPoint q = ma.touching_point(*m, far);
-    CHECK(q.site == BoundarySite{BoundarySite::Kind::Segment, 0, 3});
-    const auto back = ma.project(q);
-    REQUIRE(back);
-    CHECK(distance(back->position, m->position) < 1e-9);
-    // And from the MA point back to the bottom: the point itself.
-    const BoundaryPoint near = ma.touching_point(*m, far == Side::Left ? Side::Right : Side::Left);
-    CHECK(distance(near.position, b.position) < 1e-9);
-    images.push_back(*m);
-  }
-  CHECK(off_normal > 10);
-  // Distinct MA points, in the boundary's order: no two rails from the stretch meet.
-  for (std::size_t i = 1; i < images.size(); ++i) {
-    CAPTURE(i);
-    CHECK(images[i].position.x > images[i - 1].position.x + 0.25);
-  }
+  const std::vector<MaPoint> images = images_across_dip(p, ma, 160.0, 2.0, 41, 3, 3);
+  CHECK(std::count_if(images.begin(), images.end(), [](const MaPoint& m) { return m.off_normal; }) >
+        10);
 }
 
 TEST_CASE("a flat corner's zone goes on along the axis where the other side's corners cut it short",
@@ -135,34 +146,7 @@ TEST_CASE("a flat corner's zone goes on along the axis where the other side's co
   const Polygon2 p =
       polygon({{{0, 0}, {200, -dip}, {400, 0}, {400, 300}, {210, 302}, {190, 302}, {0, 300}}});
   const MedialAxis ma = compute_medial_axis(p);
-  std::vector<MaPoint> images;
-  for (int k = 0; k <= 40; ++k) {
-    const double x = 170.0 + 1.5 * k;  // across the corner, along the bottom
-    CAPTURE(x);
-    const BoundaryPoint b = x < 200.0 ? on_segment(p, 0, 0, x / 200.0)
-                                      : on_segment(p, 0, 1, (x - 200.0) / 200.0);
-    const auto m = ma.project(b);
-    REQUIRE(m);
-    REQUIRE(m->edge.valid());
-    CHECK(distance(b.position, m->position) >= m->radius - 1e-9);
-    // Across the axis to the top (one of its three segments), back to the same MA point, and
-    // from there to the bottom point itself.
-    const Side far = ma.far_side(*m, b);
-    const BoundaryPoint q = ma.touching_point(*m, far);
-    CHECK(q.site.index >= 3);
-    CHECK(q.position.y > 299.0);
-    const auto back = ma.project(q);
-    REQUIRE(back);
-    CHECK(distance(back->position, m->position) < 1e-9);
-    const BoundaryPoint near = ma.touching_point(*m, far == Side::Left ? Side::Right : Side::Left);
-    CHECK(distance(near.position, b.position) < 1e-9);
-    images.push_back(*m);
-  }
-  // Distinct MA points in the boundary's order, and more of the axis than the root's two
-  // edges (x 190 to 210): the stretch is spread, not a fan into one point.
-  for (std::size_t i = 1; i < images.size(); ++i) {
-    CAPTURE(i);
-    CHECK(images[i].position.x > images[i - 1].position.x + 0.25);
-  }
+  const std::vector<MaPoint> images = images_across_dip(p, ma, 170.0, 1.5, 41, 3, 5);
+  // More of the axis than the root's two edges (x 190 to 210) could give: spread, not a fan.
   CHECK(images.back().position.x - images.front().position.x > 20.0);
 }
