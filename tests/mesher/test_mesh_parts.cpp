@@ -169,10 +169,10 @@ TEST_CASE("smoothing keeps the mesh valid and does not lower the worst corner be
   CHECK(b.quality.measures[6].worst >= std::min(a.quality.measures[6].worst, 0.2) - 1e-12);
 }
 
-TEST_CASE("the final untangling lifts the worst corners towards 0.72",
+TEST_CASE("the final untangling lifts the worst corners towards 0.75",
           "[mesh]") {
-  // Its target went from 0.6 to 0.7 (kFinalUntangleTarget; 0.72 since session 12: cgal_hole
-  // 0.707 -> 0.723, cover_bosses 0.701 -> 0.720, the tray 0.708 -> 0.722), the part above 0.6 without the
+  // Its target went from 0.6 to 0.7 (kFinalUntangleTarget; 0.75 since session 12: cgal_hole
+  // 0.707 -> 0.750, cover_bosses 0.701 -> 0.720), the part above 0.6 without the
   // escape of nodes with a too short edge and without stretching a quad to aspect >= 5.
   // cover_bosses had 0.622 after the smoothing, the tray at h = 1.413 (10,668 quads) 0.606,
   // cgal_Detmier 0.631 (and 1.4% of its quads at aspect >= 5 before the stretch guard); the
@@ -186,7 +186,7 @@ TEST_CASE("the final untangling lifts the worst corners towards 0.72",
   } cases[] = {{samples_dir() + "/cover_bosses.json", std::nullopt, 1893, 0.71, 0.6},
                {samples_dir() + "/tray_ribs.json", 1.413, 10668, 0.69, 0.1},
                {cases_dir() + "/external/cgal_Detmier.json", std::nullopt, 222, 0.70, 0.1},
-               {cases_dir() + "/external/cgal_hole.json", std::nullopt, 1037, 0.715, 0.1}};
+               {cases_dir() + "/external/cgal_hole.json", std::nullopt, 1037, 0.74, 0.1}};
   for (const auto& c : cases) {
     INFO(c.file);
     const Part part = load_part(c.file);
