@@ -125,11 +125,153 @@ void MedialAxis::find_spread_zones() {
     MaVertexId lo_vertex, hi_vertex;
     double len = 0.0;
   };
-  std::vector<std::vector<Cover>> covers(polygon_.loops.size());
+  // An uncovered stretch: from the end of segment i's covered range through wholly uncovered
+  // segments (`whole`) to the start of segment k's; `root` the vertex both ends map to.
+  struct Stretch {
+    std::uint32_t i = 0, k = 0;
+    std::vector<std::uint32_t> whole;
+    double length = 0.0;
+    MaVertexId root;
+  };
+  // A zone over the boundary from s1 on segment st.i, through st.whole, to s2 on segment st.k
+  // (its pieces and length; its steps are the caller's).
+  const auto zone_over = [&](std::uint32_t l, const Stretch& st, double s1, double s2,
+                             const std::vector<Cover>& cover) {
+    SpreadZone z;
+    z.loop = l;
+    z.pieces.push_back({st.i, s1, 1.0, 0.0});
+    double at = (1.0 - s1) * cover[st.i].len;
+    for (std::uint32_t w : st.whole) {
+      z.pieces.push_back({w, 0.0, 1.0, at});
+      at += cover[w].len;
+    }
+    z.pieces.push_back({st.k, 0.0, s2, at});
+    z.length = at + s2 * cover[st.k].len;
+    return z;
+  };
+  // A zone whose image on the root's own two edges is too short (kMinSpreadImage) may take
+  // more of the axis (docs/medial.md, "Extended zones"): from the root the walk goes on
+  // through every vertex of degree 2 where the zone's side keeps its segment (only the far
+  // side's site changes there: a corner over there, whose own zone maps that side only), and
+  // stops at the first other vertex. The image ends at most kSpreadShare of the way to a stop
+  // whose axis another zone of this side may take (a vertex where this side's segment changes:
+  // a corner of this side maps there; a leaf), at most kSpreadToBranch of the way to a branch
+  // point (whose touching point on this side starts a source rail), and at most kSpreadReach
+  // x the stretch's length from the root. The zone is then the boundary whose normals meet
+  // the axis between the two ends, with the stretch, mapped in proportion to arc length; it is
+  // made when the image is at least kMinSpreadImage x the stretch's length. Every zone that
+  // the root's own edges can take stays as it was.
+  const auto extended = [&](std::uint32_t l, const Stretch& st,
+                            const std::vector<Cover>& cover) -> std::optional<SpreadZone> {
+    const Cover& a = cover[st.i];
+    const Cover& b = cover[st.k];
+    struct Walked {
+      MaEdgeId edge;
+      double t_root = 0.0;  ///< the edge's parameter at its end nearer the root
+      double len = 0.0;     ///< its chord
+    };
+    // From the root along `first`, whose site on the zone's side is `near`.
+    const auto walk = [&](MaEdgeId first, const BoundarySite& near, double& share) {
+      std::vector<Walked> path;
+      MaEdgeId e = first;
+      MaVertexId from = st.root;
+      share = kSpreadShare;
+      while (path.size() < edges_.size()) {
+        const MaEdge& ed = edges_[e.index()];
+        const MaVertexId to = ed.a == from ? ed.b : ed.a;
+        path.push_back({e, ed.a == from ? 0.0 : 1.0,
+                        distance(vertices_[from.index()].position, vertices_[to.index()].position)});
+        const MaVertex& v = vertices_[to.index()];
+        if (v.degree != 2 || !(v.radius > 0.0)) {
+          if (v.degree >= 3) share = kSpreadToBranch;
+          break;
+        }
+        const auto& inc = incident_[to.index()];
+        const MaEdgeId next = inc[0] == e ? inc[1] : inc[0];
+        const MaEdge& nx = edges_[next.index()];
+        if (nx.left != near && nx.right != near) break;
+        from = to;
+        e = next;
+      }
+      return path;
+    };
+    struct End {
+      std::size_t last = 0;  ///< the path's edge the image ends on
+      double t = 0.0;        ///< there
+      double before = 0.0;   ///< the chords of the path's edges before it
+      double image = 0.0;    ///< axis length from the root (chords of the edges)
+      double s = 0.0;        ///< the foot of that point on the zone's side
+    };
+    const auto image_end = [&](const std::vector<Walked>& path, const BoundarySite& near,
+                               double share) -> std::optional<End> {
+      double total = 0.0;
+      for (const Walked& w : path) total += w.len;
+      const double want = std::min(kSpreadReach * st.length, share * total);
+      if (!(want > eps)) return std::nullopt;
+      double before = 0.0;
+      for (std::size_t j = 0; j < path.size(); ++j) {
+        const Walked& w = path[j];
+        if (before + w.len < want && j + 1 < path.size()) {
+          before += w.len;
+          continue;
+        }
+        double q = w.len > 0.0 ? std::clamp((want - before) / w.len, 0.0, 1.0) : 1.0;
+        if (j + 1 == path.size()) q = std::min(q, share);  // also in the edge's own measure
+        End end;
+        end.last = j;
+        end.t = w.t_root + (1.0 - 2.0 * w.t_root) * q;
+        end.before = before;
+        end.image = before + q * w.len;
+        end.s = std::clamp(
+            segment_param(polygon_, near, point_on_edge(w.edge, end.t).position), 0.0, 1.0);
+        return end;
+      }
+      return std::nullopt;
+    };
+    const BoundarySite near1{BoundarySite::Kind::Segment, l, st.i};
+    const BoundarySite near2{BoundarySite::Kind::Segment, l, st.k};
+    double share1 = 0.0, share2 = 0.0;
+    const std::vector<Walked> p1 = walk(a.hi_edge, near1, share1);
+    const std::vector<Walked> p2 = walk(b.lo_edge, near2, share2);
+    const std::optional<End> end1 = image_end(p1, near1, share1);
+    const std::optional<End> end2 = image_end(p2, near2, share2);
+    if (!end1 || !end2 || end1->image + end2->image < kMinSpreadImage * st.length)
+      return std::nullopt;
+    // As for a zone on the root's edges: no reach of almost nothing.
+    const double d1 = (a.hi - end1->s) * a.len, d2 = (end2->s - b.lo) * b.len;
+    if (d1 <= eps || d2 <= eps || std::min(d1, d2) < kMinSpreadReach * st.length)
+      return std::nullopt;
+    SpreadZone z = zone_over(l, st, end1->s, end2->s, cover);
+    // Side 1 from its end to the root, then side 2 from the root to its end, each edge taking
+    // the zone's fractions in proportion to its chord.
+    const double image = end1->image + end2->image;
+    double done = 0.0;
+    const auto step = [&](const Walked& w, const BoundarySite& near, double t0, double t1,
+                          double len) {
+      const double f0 = done / image;
+      done += len;
+      z.steps.push_back({w.edge, t0, t1, f0, std::min(1.0, done / image), near});
+    };
+    for (std::size_t j = end1->last + 1; j-- > 0;) {
+      const Walked& w = p1[j];
+      if (j == end1->last)
+        step(w, near1, end1->t, w.t_root, end1->image - end1->before);
+      else
+        step(w, near1, 1.0 - w.t_root, w.t_root, w.len);
+    }
+    for (std::size_t j = 0; j <= end2->last; ++j) {
+      const Walked& w = p2[j];
+      if (j == end2->last)
+        step(w, near2, w.t_root, end2->t, end2->image - end2->before);
+      else
+        step(w, near2, w.t_root, 1.0 - w.t_root, w.len);
+    }
+    z.steps.back().f1 = 1.0;
+    return z;
+  };
   for (std::uint32_t l = 0; l < polygon_.loops.size(); ++l) {
     const auto n = static_cast<std::uint32_t>(polygon_.loops[l].size());
-    std::vector<Cover>& cover = covers[l];
-    cover.resize(n);
+    std::vector<Cover> cover(n);
     for (std::uint32_t i = 0; i < n; ++i) {
       const BoundarySite seg{BoundarySite::Kind::Segment, l, i};
       Cover& c = cover[i];
@@ -151,23 +293,10 @@ void MedialAxis::find_spread_zones() {
         }
       }
     }
-  }
-  // The uncovered stretches: from the end of segment i's covered range through wholly
-  // uncovered segments (`whole`) to the start of segment k's, and the vertex both ends map to
-  // (invalid when they map to different vertices).
-  struct Stretch {
-    std::uint32_t i = 0, k = 0;
-    std::vector<std::uint32_t> whole;
-    double length = 0.0;
-    MaVertexId root;
-  };
-  std::vector<std::vector<Stretch>> stretches(polygon_.loops.size());
-  for (std::uint32_t l = 0; l < polygon_.loops.size(); ++l) {
-    const auto n = static_cast<std::uint32_t>(polygon_.loops[l].size());
-    const std::vector<Cover>& cover = covers[l];
     for (std::uint32_t i = 0; i < n; ++i) {
       const Cover& a = cover[i];
       if (!(a.lo <= a.hi) || a.len <= 0.0 || (1.0 - a.hi) * a.len <= eps) continue;
+      // An uncovered end: walk on through uncovered segments to the next covered start.
       Stretch st;
       st.i = i;
       st.length = (1.0 - a.hi) * a.len;
@@ -181,157 +310,12 @@ void MedialAxis::find_spread_zones() {
       if (k == i || !(b.lo <= b.hi) || b.lo * b.len <= eps) continue;
       st.k = k;
       st.length += b.lo * b.len;
-      if (b.lo_vertex == a.hi_vertex) st.root = a.hi_vertex;
-      stretches[l].push_back(std::move(st));
-    }
-  }
-  // A zone whose image on the root's own two edges is too short (kMinSpreadImage) may take
-  // more of the axis (docs/medial.md, "Extended zones"): from the root the walk goes on
-  // through every vertex of degree 2 where the zone's side keeps its segment (only the far
-  // side's site changes there: a corner over there, whose own zone maps that side only), and
-  // stops at the first other vertex. The image ends at most kSpreadShare of the way to a stop
-  // whose axis another zone of this side may take (a vertex where this side's segment changes:
-  // a corner of this side maps there; a leaf), at most kSpreadToBranch of the way to a branch
-  // point (whose touching point on this side starts a source rail), and at most kSpreadReach
-  // x the stretch's length from the root. The zone is then the boundary whose normals meet
-  // the axis between the two ends, with the stretch, mapped in proportion to arc length; it is
-  // made when the image is at least kMinSpreadImage x the stretch's length. Every zone that
-  // the root's own edges can take stays as it was.
-  const auto extended = [&](std::uint32_t l, const Stretch& st, const Cover& a, const Cover& b,
-                            const std::vector<Cover>& cover) -> std::optional<SpreadZone> {
-    const auto n = static_cast<std::uint32_t>(polygon_.loops[l].size());
-    struct Walked {
-      MaEdgeId edge;
-      MaVertexId from;
-      double len = 0.0;
-    };
-    // From the root along `first`, whose site on the zone's side is `near`.
-    const auto walk = [&](MaEdgeId first, const BoundarySite& near, double& share) {
-      std::vector<Walked> path;
-      MaEdgeId e = first;
-      MaVertexId from = st.root;
-      share = kSpreadShare;
-      while (path.size() < edges_.size()) {
-        const MaEdge& ed = edges_[e.index()];
-        const MaVertexId to = ed.a == from ? ed.b : ed.a;
-        path.push_back({e, from, distance(vertices_[from.index()].position,
-                                          vertices_[to.index()].position)});
-        const MaVertex& v = vertices_[to.index()];
-        if (v.degree != 2 || !(v.radius > 0.0)) {
-          if (v.degree >= 3) share = kSpreadToBranch;
-          break;
-        }
-        const auto& inc = incident_[to.index()];
-        const MaEdgeId next = inc[0] == e ? inc[1] : inc[0];
-        const MaEdge& nx = edges_[next.index()];
-        if (nx.left != near && nx.right != near) break;
-        from = to;
-        e = next;
-      }
-      return path;
-    };
-    struct End {
-      std::size_t last = 0;  ///< the path's edge the image ends on
-      double t = 0.0;        ///< there
-      double image = 0.0;    ///< axis length from the root (chords of the edges)
-      double s = 0.0;        ///< the foot of that point on the zone's side
-    };
-    const auto image_end = [&](const std::vector<Walked>& path, const BoundarySite& near,
-                               double share) -> std::optional<End> {
-      double total = 0.0;
-      for (const Walked& w : path) total += w.len;
-      const double want = std::min(kSpreadReach * st.length, share * total);
-      if (!(want > eps)) return std::nullopt;
-      double before = 0.0;
-      for (std::size_t j = 0; j < path.size(); ++j) {
-        const Walked& w = path[j];
-        if (before + w.len < want && j + 1 < path.size()) {
-          before += w.len;
-          continue;
-        }
-        double q = w.len > 0.0 ? std::clamp((want - before) / w.len, 0.0, 1.0) : 1.0;
-        if (j + 1 == path.size()) q = std::min(q, share);  // also in the edge's own measure
-        End end;
-        const double t_from = edges_[w.edge.index()].a == w.from ? 0.0 : 1.0;
-        end.last = j;
-        end.t = t_from + (1.0 - 2.0 * t_from) * q;
-        end.image = before + q * w.len;
-        end.s = std::clamp(
-            segment_param(polygon_, near, point_on_edge(w.edge, end.t).position), 0.0, 1.0);
-        return end;
-      }
-      return std::nullopt;
-    };
-    const BoundarySite near1{BoundarySite::Kind::Segment, l, st.i};
-    const BoundarySite near2{BoundarySite::Kind::Segment, l, st.k};
-    double share1 = 0.0, share2 = 0.0;
-    const std::vector<Walked> p1 = walk(a.hi_edge, near1, share1);
-    const std::vector<Walked> p2 = walk(b.lo_edge, near2, share2);
-    const std::optional<End> end1 = image_end(p1, near1, share1);
-    const std::optional<End> end2 = image_end(p2, near2, share2);
-    if (!end1 || !end2 || end1->image + end2->image < kMinSpreadImage * st.length)
-      return std::nullopt;
-    if (st.whole.size() + 2 > n) return std::nullopt;
-    SpreadZone z;
-    z.loop = l;
-    z.pieces.push_back({st.i, end1->s, 1.0, 0.0});
-    double at = (1.0 - end1->s) * a.len;
-    const double d1 = (a.hi - end1->s) * a.len;
-    for (std::uint32_t w : st.whole) {
-      z.pieces.push_back({w, 0.0, 1.0, at});
-      at += cover[w].len;
-    }
-    z.pieces.push_back({st.k, 0.0, end2->s, at});
-    const double d2 = (end2->s - b.lo) * b.len;
-    z.length = at + end2->s * b.len;
-    // As for a zone on the root's edges: no reach of almost nothing.
-    if (d1 <= eps || d2 <= eps || std::min(d1, d2) < kMinSpreadReach * st.length)
-      return std::nullopt;
-    // Side 1 from its end to the root, then side 2 from the root to its end, each edge taking
-    // the zone's fractions in proportion to its chord.
-    const double image = end1->image + end2->image;
-    double done = 0.0;
-    const auto step = [&](const Walked& w, const BoundarySite& near, double t0, double t1,
-                          double len) {
-      const double f0 = done / image;
-      done += len;
-      z.steps.push_back({w.edge, t0, t1, f0, std::min(1.0, done / image), near});
-    };
-    double before = 0.0;
-    for (std::size_t j = 0; j < end1->last; ++j) before += p1[j].len;
-    for (std::size_t j = end1->last + 1; j-- > 0;) {
-      const Walked& w = p1[j];
-      const double t_root = edges_[w.edge.index()].a == w.from ? 0.0 : 1.0;
-      if (j == end1->last)
-        step(w, near1, end1->t, t_root, end1->image - before);
-      else
-        step(w, near1, 1.0 - t_root, t_root, w.len);
-    }
-    before = 0.0;
-    for (std::size_t j = 0; j <= end2->last; ++j) {
-      const Walked& w = p2[j];
-      const double t_root = edges_[w.edge.index()].a == w.from ? 0.0 : 1.0;
-      const bool last = j == end2->last;
-      step(w, near2, t_root, last ? end2->t : 1.0 - t_root, last ? end2->image - before : w.len);
-      before += w.len;
-    }
-    z.steps.back().f1 = 1.0;
-    return z;
-  };
-  for (std::uint32_t l = 0; l < polygon_.loops.size(); ++l) {
-    const std::vector<Cover>& cover = covers[l];
-    for (const Stretch& st : stretches[l]) {
-      const std::uint32_t i = st.i, k = st.k;
-      const Cover& a = cover[i];
-      SpreadZone z;
-      z.loop = l;
       const double length = st.length;
-      const std::vector<std::uint32_t>& whole = st.whole;
-      const Cover& b = cover[k];
       // Both ends at one vertex of degree 2, whose two edges hold the ends: the axis runs on
       // both ways from the vertex the whole stretch maps to.
-      const MaVertexId root = st.root;
-      if (!root.valid() || vertices_[root.index()].degree != 2 ||
+      const MaVertexId root = a.hi_vertex;
+      st.root = root;
+      if (b.lo_vertex != root || vertices_[root.index()].degree != 2 ||
           a.hi_edge == b.lo_edge || !(vertices_[root.index()].radius > 0.0))
         continue;
       // Parameter along an edge of a segment's foot there: linear (a line's t follows arc
@@ -360,14 +344,7 @@ void MedialAxis::find_spread_zones() {
       // zone would spread the stretch on one side only.
       if (d1 <= eps || d2 <= eps || std::min(d1, d2) < kMinSpreadReach * length) continue;
       const double s1 = a.hi - d1 / a.len, s2 = b.lo + d2 / b.len;
-      z.pieces.push_back({i, s1, 1.0, 0.0});
-      double at = (1.0 - s1) * a.len;
-      for (std::uint32_t w : whole) {
-        z.pieces.push_back({w, 0.0, 1.0, at});
-        at += cover[w].len;
-      }
-      z.pieces.push_back({k, 0.0, s2, at});
-      z.length = at + s2 * b.len;
+      SpreadZone z = zone_over(l, st, s1, s2, cover);
       const MaEdgeId e1 = a.hi_edge, e2 = b.lo_edge;
       const double t1 = t_at(e1, i, s1);
       const double t1v = edges_[e1.index()].a == root ? 0.0 : 1.0;
@@ -380,7 +357,7 @@ void MedialAxis::find_spread_zones() {
       if (l1 + l2 < kMinSpreadImage * length) {
         // Too little axis on the root's own edges: the image may go on along the axis
         // (`extended`), else the fan stays.
-        if (std::optional<SpreadZone> ez = extended(l, st, a, b, cover))
+        if (std::optional<SpreadZone> ez = extended(l, st, cover))
           zones_.push_back(std::move(*ez));
         continue;
       }

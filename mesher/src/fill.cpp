@@ -1061,11 +1061,19 @@ std::optional<FaceMesh> fill_pairs(const FaceInput& face) {
   return r;
 }
 
+/// Faces of more nodes than this get no cut template: its chord search is O(n^3) per
+/// piece and it may search 4n pieces before it gives up, O(n^4) in all. Over 227,000 faces
+/// (the 20 parts at 1x, 2x and 3x finer, the 217 generated parts and 107 random outlines;
+/// the 20 and the 217 also in adaptive mode) cut won no face above 130 nodes; the 49 faces of
+/// 140-754 nodes went to split or pairs. With this limit cgal_wiggly_03_cgal at 3x finer
+/// (faces of up to 426 nodes) takes 1.50 s instead of 1.70 s, for the same mesh.
+constexpr std::size_t kMaxCutNodes = 160;
+
 /// Cut: recursive decomposition by chords (best_chord) down to quads, then the interior nodes
 /// relaxed. The template of last resort: it needs nothing of the face but a simple polygon.
 std::optional<FaceMesh> fill_cut(const FaceInput& face) {
   const auto n = static_cast<std::uint32_t>(face.cycle.size());
-  if (n < 6 || n % 2 != 0) return std::nullopt;
+  if (n < 6 || n % 2 != 0 || n > kMaxCutNodes) return std::nullopt;
   Builder m(face, FillKind::Cut);
   std::vector<std::uint32_t> ids(n);
   for (std::uint32_t k = 0; k < n; ++k) ids[k] = k;
@@ -1322,13 +1330,6 @@ constexpr std::size_t kLargeFace = 48;
 constexpr double kLargeFaceFloor = 0.2;
 constexpr std::size_t kHugeFace = 128;
 constexpr double kHugeFaceFloor = 0.05;
-/// Faces of more nodes than this do not try the cut template: its chord search is O(n^3) per
-/// piece and it may search 4n pieces before it gives up, O(n^4) in all. Over 227,000 faces
-/// (the 20 parts at 1x, 2x and 3x finer, the 217 generated parts and 107 random outlines;
-/// the 20 and the 217 also in adaptive mode) cut won no face above 130 nodes; the 49 faces of
-/// 140-754 nodes went to split or pairs. With this limit cgal_wiggly_03_cgal at 3x finer
-/// (faces of up to 426 nodes) takes 1.50 s instead of 1.70 s, for the same mesh.
-constexpr std::size_t kMaxCutNodes = 160;
 
 /// Templates' worst corners are compared in steps of this; any valid one beats every invalid.
 constexpr double kChoiceStep = 0.05;
@@ -1578,7 +1579,6 @@ std::optional<FaceMesh> pick_unstructured(const FaceInput& face, bool fans, Cons
   double pick_shape = 0.0;
   for (int k = 0; k < 5; ++k) {
     if (!fans && (k == 2 || k == 3)) continue;
-    if (k == 4 && face.cycle.size() > kMaxCutNodes) continue;
     std::optional<FaceMesh> m = k < 2   ? fill_split(face, static_cast<std::uint32_t>(k))
                                 : k < 4 ? fill_fan_split(face, static_cast<std::uint32_t>(k - 2))
                                         : fill_cut(face);

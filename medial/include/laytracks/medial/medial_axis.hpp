@@ -180,10 +180,10 @@ class MedialAxis {
   std::vector<std::vector<MaEdgeId>> cells_;
   std::vector<std::size_t> loop_offset_;
   double size_ = 0.0;  ///< the polygon's bounding-box diagonal
-  /// A spread zone: loop pieces (segment, parameter range, arc length at its start), mapped
-  /// onto edge e1 from parameter t1 to the root vertex (t1v), then onto e2 from the root (t2v)
-  /// to t2; the first `split` of the zone's length goes to e1. near1 / near2: the zone's site
-  /// along e1 / e2.
+  /// A spread zone: loop pieces (segment, parameter range, arc length at its start), mapped in
+  /// proportion to arc length onto its steps along the axis, from the image's end on one side
+  /// of the root through the root to its end on the other (two steps, the root's own edges,
+  /// unless the zone is extended: docs/medial.md).
   struct SpreadZone {
     struct Piece {
       std::uint32_t segment = 0;
