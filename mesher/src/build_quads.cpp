@@ -1445,6 +1445,7 @@ void smooth_mesh(const Part& part,
     PatchQuads pq = patch_quads(part, mesh, p, by_patch[p], pinned);
     const std::vector<Vec2> before = pq.pos;
     final_sweeps(pq.pos, pq.fixed, pq.quads, iterations, kFinalUntangleTarget);
+    untaper_nodes(pq.pos, pq.fixed, pq.quads, iterations);
     for (std::size_t i = 0; i < pq.global.size(); ++i)
       if (pq.pos[i] != before[i]) mesh.nodes[pq.global[i]] = frame.to_3d(pq.pos[i]);
   });

@@ -2191,4 +2191,133 @@ void optimize_nodes(std::vector<Vec2>& pos,
   }
 }
 
+
+namespace {
+
+/// quality.md's taper of the quad p0..p3: the smallest corner triangle over their mean (0
+/// for a quad of no positive area).
+double quad_taper(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3) {
+  const Vec2 p[4] = {p0, p1, p2, p3};
+  double a[4], sum = 0.0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    a[i] = cross(p[(i + 1) % 4] - p[i], p[(i + 3) % 4] - p[i]);
+    sum += a[i];
+  }
+  if (!(sum > 0.0)) return 0.0;
+  return std::min({a[0], a[1], a[2], a[3]}) / (0.25 * sum);
+}
+
+/// Which of quality.md's midline measures the quad p0..p3 fails: bit 1 skew >= 30 degrees
+/// (the acute angle between the midlines at most 60: |cos| >= 1/2), bit 2 aspect ratio >= 5.
+unsigned midline_faults(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3) {
+  const Vec2 d1 = 0.5 * ((p1 + p2) - (p3 + p0)), d2 = 0.5 * ((p2 + p3) - (p0 + p1));
+  const double l1 = norm(d1), l2 = norm(d2);
+  unsigned faults = 0;
+  if (std::fabs(dot(d1, d2)) >= 0.5 * l1 * l2) faults |= 1u;
+  if (std::max(l1, l2) >= QualityThresholds::kAspectRatio * std::min(l1, l2)) faults |= 2u;
+  return faults;
+}
+
+}  // namespace
+
+void untaper_nodes(std::vector<Vec2>& pos,
+                   const std::vector<bool>& fixed,
+                   const std::vector<std::array<std::uint32_t, 4>>& quads,
+                   int iterations) {
+  const std::size_t n = pos.size();
+  std::vector<std::vector<std::uint32_t>> around(n);
+  for (std::uint32_t q = 0; q < quads.size(); ++q)
+    for (std::uint32_t v : quads[q]) around[v].push_back(q);
+  // The quad across each edge of each quad (kNone on the boundary).
+  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::array<std::uint32_t, 4>> across(quads.size(), {kNone, kNone, kNone, kNone});
+  for (std::uint32_t q = 0; q < quads.size(); ++q)
+    for (std::size_t k = 0; k < 4; ++k) {
+      const std::uint32_t a = quads[q][k], b = quads[q][(k + 1) % 4];
+      for (std::uint32_t w : around[a])
+        if (w != q && std::find(quads[w].begin(), quads[w].end(), b) != quads[w].end())
+          across[q][k] = w;
+    }
+  const auto area = [&](std::uint32_t q) {
+    const auto& x = quads[q];
+    return 0.5 * cross(pos[x[2]] - pos[x[0]], pos[x[3]] - pos[x[1]]);
+  };
+  // Per quad round the node being moved: its faults before the move.
+  std::vector<unsigned> faults;
+  // The sum of (1 - taper)^2 over the quads round v, their worst scaled Jacobian, and the
+  // largest area ratio between one of them and a quad across an edge of it; with `faults`
+  // filled, infinity when a quad has a fault it did not have.
+  const auto measure = [&](std::uint32_t v, double& worst, double& ratio) {
+    double sum = 0.0;
+    worst = std::numeric_limits<double>::infinity();
+    ratio = 1.0;
+    for (std::size_t i = 0; i < around[v].size(); ++i) {
+      const std::uint32_t q = around[v][i];
+      const auto& x = quads[q];
+      const Vec2 a = pos[x[0]], b = pos[x[1]], c = pos[x[2]], d = pos[x[3]];
+      const unsigned f = midline_faults(a, b, c, d);
+      if (faults.size() < around[v].size()) faults.push_back(f);
+      else if (f & ~faults[i]) return std::numeric_limits<double>::infinity();
+      const double off = 1.0 - quad_taper(a, b, c, d);
+      sum += off * off;
+      worst = std::min(worst, min_scaled_jacobian(a, b, c, d));
+      const double aq = area(q);
+      for (std::uint32_t w : across[q]) {
+        if (w == kNone) continue;
+        const double aw = area(w);
+        if (aq > 0.0 && aw > 0.0) ratio = std::max(ratio, std::max(aq, aw) / std::min(aq, aw));
+      }
+    }
+    return sum;
+  };
+  Settled settled_nodes(n, around, quads);
+  for (int it = 0; it < iterations; ++it) {
+    bool moved = false;
+    for (std::uint32_t v = 0; v < n; ++v) {
+      if (fixed[v] || around[v].empty() || settled_nodes.idle(v)) continue;
+      // Where v would make each quad round it a parallelogram (the node after it plus the
+      // node before it minus the opposite node), averaged.
+      Vec2 goal{0.0, 0.0};
+      bool simple = true;
+      for (std::uint32_t q : around[v]) {
+        const auto& x = quads[q];
+        std::size_t k = 0, count = 0;
+        for (std::size_t i = 0; i < 4; ++i)
+          if (x[i] == v) {
+            k = i;
+            ++count;
+          }
+        simple = simple && count == 1;
+        goal = goal + (pos[x[(k + 1) % 4]] + pos[x[(k + 3) % 4]] - pos[x[(k + 2) % 4]]);
+      }
+      const Vec2 old = pos[v];
+      // A node whose quads are all nearly parallelograms stays.
+      simple = simple && std::any_of(around[v].begin(), around[v].end(), [&](std::uint32_t q) {
+        const auto& x = quads[q];
+        return quad_taper(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]) < kUntaperFrom;
+      });
+      if (simple) {
+        goal = (1.0 / static_cast<double>(around[v].size())) * goal;
+        faults.clear();
+        double worst_before = 0.0, ratio_before = 1.0;
+        const double before = measure(v, worst_before, ratio_before);
+        const double ratio_cap = std::max(ratio_before, kUntaperAreaRatio);
+        for (double step : {1.0, 0.5, 0.25}) {
+          pos[v] = lerp(old, goal, step);
+          double worst = 0.0, ratio = 1.0;
+          const double after = measure(v, worst, ratio);
+          if (after < before - kUntaperGain && settled(worst) >= settled(worst_before) &&
+              keeps_sign(worst_before, worst) && ratio <= ratio_cap)
+            break;
+          pos[v] = old;
+        }
+      }
+      const bool changed = !same_bits(pos[v], old);
+      moved = moved || changed;
+      settled_nodes.visited(v, changed);
+    }
+    if (!moved) break;
+  }
+}
+
 }  // namespace laytracks::mesher_detail

@@ -189,6 +189,31 @@ void final_sweeps(std::vector<Vec2>& pos,
                   int iterations,
                   double target);
 
+/// Moves each interior node towards the mean of the positions that would make each quad round
+/// it a parallelogram (the neighbours after and before it minus the opposite node), the whole
+/// way, half or a quarter, the first that lowers the sum of (1 - taper)^2 over its quads by
+/// kUntaperGain, lowers no quad's scaled Jacobian below the worst round the node before, and
+/// gives no quad a skew >= 30 degrees or an aspect ratio >= 5 (quality.md) it did not have.
+/// At most `iterations` sweeps; `fixed` nodes stay. docs/mesher.md, "Taper".
+void untaper_nodes(std::vector<Vec2>& pos,
+                   const std::vector<bool>& fixed,
+                   const std::vector<std::array<std::uint32_t, 4>>& quads,
+                   int iterations);
+
+/// The least fall of untaper_nodes' sum that moves a node: above rounding at any scale (the
+/// sum is of ratios), so that a pose's last bits do not decide a move.
+constexpr double kUntaperGain = 1e-9;
+
+/// ... nor raises the largest area ratio between a quad round the node and one across its
+/// edges above this, or above what it was when that was more: untapering evens shapes, not
+/// sizes, and a graded mesh keeps its grading (quality.md's neighbour ratio is of square roots
+/// of areas: 1.5 here is 1.22 there).
+constexpr double kUntaperAreaRatio = 2.5;
+
+/// untaper_nodes leaves a node whose quads all have a taper of at least this (most nodes of a
+/// structured region: they cost the sweeps' time and gain nothing that counts).
+constexpr double kUntaperFrom = 0.95;
+
 /// A node whose Newton step promises less decrease of its objective than this stays.
 constexpr double kOptimizeTolerance = 1e-4;
 

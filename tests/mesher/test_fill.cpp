@@ -196,6 +196,55 @@ TEST_CASE("the untangler never inverts a quad to lengthen a short edge", "[fill]
   }
 }
 
+TEST_CASE("untapering makes a jittered grid's quads parallelograms again, losing nothing",
+          "[fill][smooth]") {
+  // A 3 x 3 grid in a sheared, stretched parallelogram, its four inner nodes moved at random:
+  // every quad that was a parallelogram is a trapezoid or worse. Untapering must bring taper
+  // <= 0.8 (quality.md) down, lower no worst corner, and add no skew or aspect fault.
+  const auto quads = grid_quads();
+  std::vector<bool> fixed(16, true);
+  fixed[5] = fixed[6] = fixed[9] = fixed[10] = false;
+  const auto measures = [&](const std::vector<Vec2>& pos) {
+    std::vector<QuadQuality> m;
+    for (const auto& q : quads) {
+      std::array<Vec3, 4> c;
+      for (std::size_t k = 0; k < 4; ++k) c[k] = {pos[q[k]].x, pos[q[k]].y, 0.0};
+      m.push_back(measure_quad(c, {0.0, 0.0, 1.0}));
+    }
+    return m;
+  };
+  const auto tapered = [](const std::vector<QuadQuality>& m) {
+    return std::count_if(m.begin(), m.end(), [](const QuadQuality& q) { return q.taper <= QualityThresholds::kTaper; });
+  };
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  long before_total = 0, after_total = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const double sy = 0.3 + 0.7 * (u(rng) + 1.0) / 2.0, shear = 0.5 * u(rng);
+    std::vector<Vec2> pos;
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) pos.push_back({i + shear * j, sy * j});
+    for (std::uint32_t v : {5u, 6u, 9u, 10u}) pos[v] = pos[v] + Vec2{0.25 * u(rng), 0.25 * sy * u(rng)};
+    const auto m0 = measures(pos);
+    const double worst0 = worst_quad(pos, quads);
+    untaper_nodes(pos, fixed, quads, 10);
+    const auto m1 = measures(pos);
+    INFO("trial " << trial);
+    CHECK(worst_quad(pos, quads) >= worst0 - 1e-9);
+    for (std::size_t q = 0; q < quads.size(); ++q) {
+      if (m0[q].skew_deg < QualityThresholds::kSkewDeg) CHECK(m1[q].skew_deg < QualityThresholds::kSkewDeg);
+      if (m0[q].aspect_ratio < QualityThresholds::kAspectRatio)
+        CHECK(m1[q].aspect_ratio < QualityThresholds::kAspectRatio);
+    }
+    CHECK(tapered(m1) <= tapered(m0) + 1);
+    before_total += tapered(m0);
+    after_total += tapered(m1);
+  }
+  // Most of the tapered quads are mended (the outer ring's corners are fixed, so not all).
+  CHECK(before_total > 2000);
+  CHECK(after_total < before_total / 10);
+}
+
 TEST_CASE("faces with corners get coarse quads split in four, not only kites", "[fill]") {
   // Hexagons (two and four edges a side) read as one side: six corners, so no strip and no
   // corner grid; the unstructured templates take them. A triangle split into three gives
