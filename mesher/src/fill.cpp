@@ -1775,6 +1775,32 @@ class Settled {
 
 bool same_bits(Vec2 a, Vec2 b) { return std::memcmp(&a, &b, sizeof(Vec2)) == 0; }
 
+/// quality.md's taper of the quad p0..p3: the smallest corner triangle over their mean (0
+/// for a quad of no positive area).
+double quad_taper(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3) {
+  const Vec2 p[4] = {p0, p1, p2, p3};
+  double a[4], sum = 0.0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    a[i] = cross(p[(i + 1) % 4] - p[i], p[(i + 3) % 4] - p[i]);
+    sum += a[i];
+  }
+  if (!(sum > 0.0)) return 0.0;
+  return std::min({a[0], a[1], a[2], a[3]}) / (0.25 * sum);
+}
+
+/// Which of quality.md's midline measures the quad p0..p3 fails: bit 1 skew >= 30 degrees
+/// (the acute angle between the midlines at most 60: |cos| >= 1/2), bit 2 aspect ratio >= 5.
+unsigned midline_faults(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3) {
+  const Vec2 d1 = 0.5 * ((p1 + p2) - (p3 + p0)), d2 = 0.5 * ((p2 + p3) - (p0 + p1));
+  const double s1 = dot(d1, d1), s2 = dot(d2, d2), c = dot(d1, d2);  // squares: no hypot
+  constexpr double kAspect2 = QualityThresholds::kAspectRatio * QualityThresholds::kAspectRatio;
+  unsigned faults = 0;
+  if (c * c >= 0.25 * s1 * s2) faults |= 1u;
+  if (std::max(s1, s2) >= kAspect2 * std::min(s1, s2)) faults |= 2u;
+  return faults;
+}
+
+
 }  // namespace
 
 void smooth_nodes(std::vector<Vec2>& pos,
@@ -1936,24 +1962,19 @@ void untangle_nodes(std::vector<Vec2>& pos,
   static const Vec2 kDirs[8] = {{1, 0}, {0.7071, 0.7071}, {0, 1}, {-0.7071, 0.7071},
                                 {-1, 0}, {-0.7071, -0.7071}, {0, -1}, {0.7071, -0.7071}};
   // Strict (the final smoothing's second stage): a move may not stretch a quad round v to an
-  // aspect ratio that quality.md calls bad (measure_quad, QualityThresholds) when it was not:
-  // raising the worst corner past 0.6 made cgal_Detmier's aspect >= 5 go 0 -> 1.4%.
-  const auto aspect_of = [&](const std::array<std::uint32_t, 4>& x) {
-    std::array<Vec3, 4> corners;
-    for (std::size_t k = 0; k < 4; ++k) corners[k] = {pos[x[k]].x, pos[x[k]].y, 0.0};
-    return measure_quad(corners, {0.0, 0.0, 1.0}).aspect_ratio;
-  };
-  // Whether moving v from `from` to `to` stretches a quad round it. pos[v] is put back as it
+  // aspect ratio that quality.md calls bad (midline_faults) when it was not: raising the
+  // worst corner past 0.6 made cgal_Detmier's aspect >= 5 go 0 -> 1.4%. Whether moving v from `from` to `to` stretches a quad round it. pos[v] is put back as it
   // was: the search of a node that is twice in a quad has already set it to the candidate.
   const auto stretches = [&](std::uint32_t v, Vec2 from, Vec2 to) {
     const Vec2 was = pos[v];
     bool stretched = false;
     for (std::uint32_t q : around[v]) {
+      const auto& x = quads[q];
       pos[v] = from;
-      const double now = aspect_of(quads[q]);
+      const bool now = midline_faults(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]) & 2u;
       pos[v] = to;
-      const double then = aspect_of(quads[q]);
-      if (then >= QualityThresholds::kAspectRatio && now < QualityThresholds::kAspectRatio) {
+      const bool then = midline_faults(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]) & 2u;
+      if (then && !now) {
         stretched = true;
         break;
       }
@@ -2192,33 +2213,6 @@ void optimize_nodes(std::vector<Vec2>& pos,
 }
 
 
-namespace {
-
-/// quality.md's taper of the quad p0..p3: the smallest corner triangle over their mean (0
-/// for a quad of no positive area).
-double quad_taper(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3) {
-  const Vec2 p[4] = {p0, p1, p2, p3};
-  double a[4], sum = 0.0;
-  for (std::size_t i = 0; i < 4; ++i) {
-    a[i] = cross(p[(i + 1) % 4] - p[i], p[(i + 3) % 4] - p[i]);
-    sum += a[i];
-  }
-  if (!(sum > 0.0)) return 0.0;
-  return std::min({a[0], a[1], a[2], a[3]}) / (0.25 * sum);
-}
-
-/// Which of quality.md's midline measures the quad p0..p3 fails: bit 1 skew >= 30 degrees
-/// (the acute angle between the midlines at most 60: |cos| >= 1/2), bit 2 aspect ratio >= 5.
-unsigned midline_faults(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3) {
-  const Vec2 d1 = 0.5 * ((p1 + p2) - (p3 + p0)), d2 = 0.5 * ((p2 + p3) - (p0 + p1));
-  const double l1 = norm(d1), l2 = norm(d2);
-  unsigned faults = 0;
-  if (std::fabs(dot(d1, d2)) >= 0.5 * l1 * l2) faults |= 1u;
-  if (std::max(l1, l2) >= QualityThresholds::kAspectRatio * std::min(l1, l2)) faults |= 2u;
-  return faults;
-}
-
-}  // namespace
 
 void untaper_nodes(std::vector<Vec2>& pos,
                    const std::vector<bool>& fixed,
