@@ -1775,6 +1775,30 @@ class Settled {
 
 bool same_bits(Vec2 a, Vec2 b) { return std::memcmp(&a, &b, sizeof(Vec2)) == 0; }
 
+/// The sweeps of the node movers: up to `iterations` passes over the nodes in order, each
+/// visiting every node that is not fixed, is in a quad, and is not idle (Settled: none of its
+/// ring moved since its last visit left it where it was). `visit(v)` moves v or leaves it and
+/// returns true when the pass should count as progress; a pass without progress is the last.
+template <class Visit>
+void sweep_nodes(std::vector<Vec2>& pos,
+                 const std::vector<bool>& fixed,
+                 const std::vector<std::vector<std::uint32_t>>& around,
+                 const std::vector<std::array<std::uint32_t, 4>>& quads,
+                 int iterations,
+                 Visit&& visit) {
+  Settled settled_nodes(pos.size(), around, quads);
+  for (int it = 0; it < iterations; ++it) {
+    bool moved = false;
+    for (std::uint32_t v = 0; v < pos.size(); ++v) {
+      if (fixed[v] || around[v].empty() || settled_nodes.idle(v)) continue;
+      const Vec2 start = pos[v];
+      if (visit(v)) moved = true;
+      settled_nodes.visited(v, !same_bits(pos[v], start));
+    }
+    if (!moved) break;
+  }
+}
+
 /// quality.md's taper of the quad p0..p3: the smallest corner triangle over their mean (0
 /// for a quad of no positive area).
 double quad_taper(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3) {
@@ -1829,41 +1853,34 @@ void smooth_nodes(std::vector<Vec2>& pos,
   std::vector<double> value(quads.size());
   for (std::uint32_t q = 0; q < quads.size(); ++q) value[q] = jac(q);
   std::vector<double> trial;
-  Settled settled_nodes(n, around, quads);
-  for (int it = 0; it < iterations; ++it) {
-    bool moved = false;
-    for (std::uint32_t v = 0; v < n; ++v) {
-      if (fixed[v] || nbr[v].empty() || settled_nodes.idle(v)) continue;
-      Vec2 avg{0.0, 0.0};
-      for (std::uint32_t w : nbr[v]) avg = avg + pos[w];
-      avg = (1.0 / static_cast<double>(nbr[v].size())) * avg;
-      double before = std::numeric_limits<double>::infinity();
-      for (std::uint32_t q : around[v]) before = std::min(before, value[q]);
-      const Vec2 old = pos[v];
-      pos[v] = avg;
-      // Below min(b, kSmoothFloor) the move is refused (settled(x) <= x + 1e-9 for |x| <= 1):
-      // the quads after the one that goes below it need not be computed.
-      const double b = settled(before);
-      const double give_up = std::min(b, kSmoothFloor) - 1e-8;
-      double after = std::numeric_limits<double>::infinity();
-      trial.clear();
-      for (std::uint32_t q : around[v]) {
-        trial.push_back(jac(q));
-        after = std::min(after, trial.back());
-        if (after < give_up) break;
-      }
-      // Accept when the worst quad around v does not get worse (or stays above the floor).
-      const double a = settled(after);
-      if (a >= std::min(b, kSmoothFloor) && (a >= b || a >= kSmoothFloor) && keeps_sign(before, after)) {
-        moved = moved || old != avg;
-        for (std::size_t i = 0; i < trial.size(); ++i) value[around[v][i]] = trial[i];
-      } else {
-        pos[v] = old;
-      }
-      settled_nodes.visited(v, !same_bits(pos[v], old));
+  sweep_nodes(pos, fixed, around, quads, iterations, [&](std::uint32_t v) {
+    Vec2 avg{0.0, 0.0};
+    for (std::uint32_t w : nbr[v]) avg = avg + pos[w];
+    avg = (1.0 / static_cast<double>(nbr[v].size())) * avg;
+    double before = std::numeric_limits<double>::infinity();
+    for (std::uint32_t q : around[v]) before = std::min(before, value[q]);
+    const Vec2 old = pos[v];
+    pos[v] = avg;
+    // Below min(b, kSmoothFloor) the move is refused (settled(x) <= x + 1e-9 for |x| <= 1):
+    // the quads after the one that goes below it need not be computed.
+    const double b = settled(before);
+    const double give_up = std::min(b, kSmoothFloor) - 1e-8;
+    double after = std::numeric_limits<double>::infinity();
+    trial.clear();
+    for (std::uint32_t q : around[v]) {
+      trial.push_back(jac(q));
+      after = std::min(after, trial.back());
+      if (after < give_up) break;
     }
-    if (!moved) break;
-  }
+    // Accept when the worst quad around v does not get worse (or stays above the floor).
+    const double a = settled(after);
+    if (a >= std::min(b, kSmoothFloor) && (a >= b || a >= kSmoothFloor) && keeps_sign(before, after)) {
+      for (std::size_t i = 0; i < trial.size(); ++i) value[around[v][i]] = trial[i];
+      return old != avg;
+    }
+    pos[v] = old;
+    return false;
+  });
 }
 
 void untangle_nodes(std::vector<Vec2>& pos,
@@ -1982,9 +1999,9 @@ void untangle_nodes(std::vector<Vec2>& pos,
     pos[v] = was;
     return stretched;
   };
-  bool moved = false;
-  // One visit of node v: the compass search from where it is.
+  // One visit of node v: the compass search from where it is. True when it raised v's worst.
   const auto search_node = [&](std::uint32_t v) {
+    bool moved = false;
     bool simple = true;
     ring.clear();
     for (std::uint32_t q : around[v]) {
@@ -2024,7 +2041,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
         before = std::min(before, min_scaled_jacobian(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]));
       }
     }
-    if (current >= target) return;
+    if (current >= target) return false;
     // Step: a quarter of the shortest edge at v.
     edges.clear();
     for (std::uint32_t q : around[v])
@@ -2092,18 +2109,9 @@ void untangle_nodes(std::vector<Vec2>& pos,
         }
       }
     }
+    return moved;
   };
-  Settled settled_nodes(n, around, quads);
-  for (int it = 0; it < iterations; ++it) {
-    moved = false;
-    for (std::uint32_t v = 0; v < n; ++v) {
-      if (fixed[v] || around[v].empty() || settled_nodes.idle(v)) continue;
-      const Vec2 start = pos[v];
-      search_node(v);
-      settled_nodes.visited(v, !same_bits(pos[v], start));
-    }
-    if (!moved) break;
-  }
+  sweep_nodes(pos, fixed, around, quads, iterations, search_node);
 }
 
 void optimize_nodes(std::vector<Vec2>& pos,
@@ -2172,17 +2180,17 @@ void optimize_nodes(std::vector<Vec2>& pos,
     return f;
   };
   // One visit of node v: a Newton step, halved until it is taken or too small.
-  const auto visit = [&](std::uint32_t v, bool& moved) {
+  const auto visit = [&](std::uint32_t v) {
     Vec2 g;
     double h[3];
     const double f0 = objective(v, &g, h);
-    if (!std::isfinite(f0)) return;  // an inverted corner: the untangler's work
+    if (!std::isfinite(f0)) return false;  // an inverted corner: the untangler's work
     const double det = h[0] * h[2] - h[1] * h[1];
-    if (!(det > 0.0) || !(h[0] > 0.0)) return;
+    if (!(det > 0.0) || !(h[0] > 0.0)) return false;
     const Vec2 step{-(h[2] * g.x - h[1] * g.y) / det, -(h[0] * g.y - h[1] * g.x) / det};
     // The Newton decrement -g.step / 2 is the decrease the step promises (dimensionless, the
     // same in every pose and at every scale): below kOptimizeTolerance the node stays.
-    if (-0.5 * dot(g, step) < kOptimizeTolerance) return;
+    if (-0.5 * dot(g, step) < kOptimizeTolerance) return false;
     double before = std::numeric_limits<double>::infinity();
     for (std::uint32_t q : around[v]) before = std::min(before, jac(q));
     const Vec2 old = pos[v];
@@ -2196,20 +2204,10 @@ void optimize_nodes(std::vector<Vec2>& pos,
       for (std::uint32_t q : around[v]) after = std::min(after, jac(q));
       kept = settled(after) >= std::min(settled(before), kSmoothFloor) && keeps_sign(before, after);
     }
-    if (kept) moved = true;
-    else pos[v] = old;
+    if (!kept) pos[v] = old;
+    return kept;
   };
-  Settled settled_nodes(n, around, quads);
-  for (int it = 0; it < iterations; ++it) {
-    bool moved = false;
-    for (std::uint32_t v = 0; v < n; ++v) {
-      if (fixed[v] || around[v].empty() || settled_nodes.idle(v)) continue;
-      const Vec2 start = pos[v];
-      visit(v, moved);
-      settled_nodes.visited(v, !same_bits(pos[v], start));
-    }
-    if (!moved) break;
-  }
+  sweep_nodes(pos, fixed, around, quads, iterations, visit);
 }
 
 
@@ -2264,54 +2262,46 @@ void untaper_nodes(std::vector<Vec2>& pos,
     }
     return sum;
   };
-  Settled settled_nodes(n, around, quads);
-  for (int it = 0; it < iterations; ++it) {
-    bool moved = false;
-    for (std::uint32_t v = 0; v < n; ++v) {
-      if (fixed[v] || around[v].empty() || settled_nodes.idle(v)) continue;
-      // Where v would make each quad round it a parallelogram (the node after it plus the
-      // node before it minus the opposite node), averaged.
-      Vec2 goal{0.0, 0.0};
-      bool simple = true;
-      for (std::uint32_t q : around[v]) {
-        const auto& x = quads[q];
-        std::size_t k = 0, count = 0;
-        for (std::size_t i = 0; i < 4; ++i)
-          if (x[i] == v) {
-            k = i;
-            ++count;
-          }
-        simple = simple && count == 1;
-        goal = goal + (pos[x[(k + 1) % 4]] + pos[x[(k + 3) % 4]] - pos[x[(k + 2) % 4]]);
-      }
-      const Vec2 old = pos[v];
-      // A node whose quads are all nearly parallelograms stays.
-      simple = simple && std::any_of(around[v].begin(), around[v].end(), [&](std::uint32_t q) {
-        const auto& x = quads[q];
-        return quad_taper(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]) < kUntaperFrom;
-      });
-      if (simple) {
-        goal = (1.0 / static_cast<double>(around[v].size())) * goal;
-        faults.clear();
-        double worst_before = 0.0, ratio_before = 1.0;
-        const double before = measure(v, worst_before, ratio_before);
-        const double ratio_cap = std::max(ratio_before, kUntaperAreaRatio);
-        for (double step : {1.0, 0.5, 0.25}) {
-          pos[v] = lerp(old, goal, step);
-          double worst = 0.0, ratio = 1.0;
-          const double after = measure(v, worst, ratio);
-          if (after < before - kUntaperGain && settled(worst) >= settled(worst_before) &&
-              keeps_sign(worst_before, worst) && ratio <= ratio_cap)
-            break;
-          pos[v] = old;
+  sweep_nodes(pos, fixed, around, quads, iterations, [&](std::uint32_t v) {
+    // Where v would make each quad round it a parallelogram (the node after it plus the
+    // node before it minus the opposite node), averaged.
+    Vec2 goal{0.0, 0.0};
+    bool simple = true;
+    for (std::uint32_t q : around[v]) {
+      const auto& x = quads[q];
+      std::size_t k = 0, count = 0;
+      for (std::size_t i = 0; i < 4; ++i)
+        if (x[i] == v) {
+          k = i;
+          ++count;
         }
-      }
-      const bool changed = !same_bits(pos[v], old);
-      moved = moved || changed;
-      settled_nodes.visited(v, changed);
+      simple = simple && count == 1;
+      goal = goal + (pos[x[(k + 1) % 4]] + pos[x[(k + 3) % 4]] - pos[x[(k + 2) % 4]]);
     }
-    if (!moved) break;
-  }
+    const Vec2 old = pos[v];
+    // A node whose quads are all nearly parallelograms stays.
+    simple = simple && std::any_of(around[v].begin(), around[v].end(), [&](std::uint32_t q) {
+      const auto& x = quads[q];
+      return quad_taper(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]) < kUntaperFrom;
+    });
+    if (simple) {
+      goal = (1.0 / static_cast<double>(around[v].size())) * goal;
+      faults.clear();
+      double worst_before = 0.0, ratio_before = 1.0;
+      const double before = measure(v, worst_before, ratio_before);
+      const double ratio_cap = std::max(ratio_before, kUntaperAreaRatio);
+      for (double step : {1.0, 0.5, 0.25}) {
+        pos[v] = lerp(old, goal, step);
+        double worst = 0.0, ratio = 1.0;
+        const double after = measure(v, worst, ratio);
+        if (after < before - kUntaperGain && settled(worst) >= settled(worst_before) &&
+            keeps_sign(worst_before, worst) && ratio <= ratio_cap)
+          break;
+        pos[v] = old;
+      }
+    }
+    return !same_bits(pos[v], old);
+  });
 }
 
 }  // namespace laytracks::mesher_detail
