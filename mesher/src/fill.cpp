@@ -1775,6 +1775,16 @@ class Settled {
 
 bool same_bits(Vec2 a, Vec2 b) { return std::memcmp(&a, &b, sizeof(Vec2)) == 0; }
 
+/// Per node of n, the quads it is a corner of (in quad order; twice for a node that is two
+/// corners of one quad).
+std::vector<std::vector<std::uint32_t>> quads_at_nodes(std::size_t n,
+                                                       const std::vector<std::array<std::uint32_t, 4>>& quads) {
+  std::vector<std::vector<std::uint32_t>> around(n);
+  for (std::uint32_t q = 0; q < quads.size(); ++q)
+    for (std::uint32_t v : quads[q]) around[v].push_back(q);
+  return around;
+}
+
 /// The sweeps of the node movers: up to `iterations` passes over the nodes in order, each
 /// visiting every node that is not fixed, is in a quad, and is not idle (Settled: none of its
 /// ring moved since its last visit left it where it was). `visit(v)` moves v or leaves it and
@@ -1891,9 +1901,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
                     double min_edge_fraction,
                     bool strict) {
   const std::size_t n = pos.size();
-  std::vector<std::vector<std::uint32_t>> around(n);
-  for (std::uint32_t q = 0; q < quads.size(); ++q)
-    for (std::uint32_t v : quads[q]) around[v].push_back(q);
+  const std::vector<std::vector<std::uint32_t>> around = quads_at_nodes(n, quads);
   // Scaled Jacobians do not see size: a node may not come closer to a neighbour than
   // kMinEdgeFraction x the mean length of its edges before the search, or quads would shrink
   // to points.
@@ -2210,16 +2218,12 @@ void optimize_nodes(std::vector<Vec2>& pos,
   sweep_nodes(pos, fixed, around, quads, iterations, visit);
 }
 
-
-
 void untaper_nodes(std::vector<Vec2>& pos,
                    const std::vector<bool>& fixed,
                    const std::vector<std::array<std::uint32_t, 4>>& quads,
                    int iterations) {
   const std::size_t n = pos.size();
-  std::vector<std::vector<std::uint32_t>> around(n);
-  for (std::uint32_t q = 0; q < quads.size(); ++q)
-    for (std::uint32_t v : quads[q]) around[v].push_back(q);
+  const std::vector<std::vector<std::uint32_t>> around = quads_at_nodes(n, quads);
   // The quad across each edge of each quad (kNone on the boundary).
   constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::array<std::uint32_t, 4>> across(quads.size(), {kNone, kNone, kNone, kNone});
