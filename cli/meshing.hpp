@@ -44,10 +44,11 @@ Args meshing_args(const std::vector<std::string>& argv,
   "  --min-size S     adaptive: no track narrower than S (default: the paper's MIN_END_WIDTH,\n" \
   "                   3% of the largest medial radius at dtheta 15, in proportion to dtheta)\n" \
   "  --max-size S     adaptive: no track wider than S (default: no bound)\n"                 \
-  "  --smooth N       Laplacian sweeps over interior nodes, then untangling sweeps on\n"     \
-  "                   the worst ones; never inverting an element (default 10; 0 keeps\n"   \
-  "                   the nodes where the templates put them; the cavity re-fill relaxes\n" \
-  "                   its quads with min(N, 4) sweeps)\n"                                   \
+  "  --smooth N       up to N sweeps of each: Laplacian, angle optimisation, untangling\n"   \
+  "                   of the worst quads, and untapering (nodes towards parallelograms);\n" \
+  "                   never inverting an element (default 10; 0 keeps the nodes where\n"   \
+  "                   the templates put them; the cavity re-fill relaxes its quads with\n" \
+  "                   min(N, 4) sweeps)\n"                                                 \
   "  --chord-tol T    sagitta bound for arcs (default 1e-3 x the part's size)\n"
 
 /// Reads --size, --smooth, --chord-tol, --adaptive, --uniform, --dtheta, --min-size and
