@@ -1834,7 +1834,6 @@ unsigned midline_faults(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3) {
   return faults;
 }
 
-
 }  // namespace
 
 void smooth_nodes(std::vector<Vec2>& pos,
@@ -1988,7 +1987,8 @@ void untangle_nodes(std::vector<Vec2>& pos,
                                 {-1, 0}, {-0.7071, -0.7071}, {0, -1}, {0.7071, -0.7071}};
   // Strict (the final smoothing's second stage): a move may not stretch a quad round v to an
   // aspect ratio that quality.md calls bad (midline_faults) when it was not: raising the
-  // worst corner past 0.6 made cgal_Detmier's aspect >= 5 go 0 -> 1.4%. Whether moving v from `from` to `to` stretches a quad round it. pos[v] is put back as it
+  // worst corner past 0.6 made cgal_Detmier's aspect >= 5 go 0 -> 1.4%.
+  // Whether moving v from `from` to `to` stretches a quad round it. pos[v] is put back as it
   // was: the search of a node that is twice in a quad has already set it to the candidate.
   const auto stretches = [&](std::uint32_t v, Vec2 from, Vec2 to) {
     const Vec2 was = pos[v];

@@ -214,7 +214,8 @@ TEST_CASE("untapering makes a jittered grid's quads parallelograms again, losing
     return m;
   };
   const auto tapered = [](const std::vector<QuadQuality>& m) {
-    return std::count_if(m.begin(), m.end(), [](const QuadQuality& q) { return q.taper <= QualityThresholds::kTaper; });
+    return std::count_if(m.begin(), m.end(),
+                         [](const QuadQuality& q) { return q.taper <= QualityThresholds::kTaper; });
   };
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -224,7 +225,8 @@ TEST_CASE("untapering makes a jittered grid's quads parallelograms again, losing
     std::vector<Vec2> pos;
     for (int j = 0; j < 4; ++j)
       for (int i = 0; i < 4; ++i) pos.push_back({i + shear * j, sy * j});
-    for (std::uint32_t v : {5u, 6u, 9u, 10u}) pos[v] = pos[v] + Vec2{0.25 * u(rng), 0.25 * sy * u(rng)};
+    for (std::uint32_t v : {5u, 6u, 9u, 10u})
+      pos[v] = pos[v] + Vec2{0.25 * u(rng), 0.25 * sy * u(rng)};
     const auto m0 = measures(pos);
     const double worst0 = worst_quad(pos, quads);
     untaper_nodes(pos, fixed, quads, 10);
@@ -232,7 +234,8 @@ TEST_CASE("untapering makes a jittered grid's quads parallelograms again, losing
     INFO("trial " << trial);
     CHECK(worst_quad(pos, quads) >= worst0 - 1e-9);
     for (std::size_t q = 0; q < quads.size(); ++q) {
-      if (m0[q].skew_deg < QualityThresholds::kSkewDeg) CHECK(m1[q].skew_deg < QualityThresholds::kSkewDeg);
+      if (m0[q].skew_deg < QualityThresholds::kSkewDeg)
+        CHECK(m1[q].skew_deg < QualityThresholds::kSkewDeg);
       if (m0[q].aspect_ratio < QualityThresholds::kAspectRatio)
         CHECK(m1[q].aspect_ratio < QualityThresholds::kAspectRatio);
     }
