@@ -1545,6 +1545,19 @@ std::optional<FaceMesh> fill_ogrid(const FaceInput& face) {
   return best;
 }
 
+/// quality.md's taper of the quad p0..p3: the smallest corner triangle over their mean (0
+/// for a quad of no positive area).
+double quad_taper(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3) {
+  const Vec2 p[4] = {p0, p1, p2, p3};
+  double a[4], sum = 0.0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    a[i] = cross(p[(i + 1) % 4] - p[i], p[(i + 3) % 4] - p[i]);
+    sum += a[i];
+  }
+  if (!(sum > 0.0)) return 0.0;
+  return std::min({a[0], a[1], a[2], a[3]}) / (0.25 * sum);
+}
+
 /// The mean over a face's quads of min(scaled Jacobian, taper) (quality.md): 1 for squares,
 /// 0.5 for the kites of a triangle split into three. Chooses between unstructured templates
 /// whose worst corners are all acceptable, so that fewer and squarer quads win.
@@ -1554,14 +1567,8 @@ double mean_shape(const FaceMesh& m, const FaceInput& face) {
   auto pos = [&](std::uint32_t i) { return i < n ? face.cycle[i] : m.interior[i - n]; };
   double sum = 0.0;
   for (const auto& q : m.quads) {
-    double area[4], mean = 0.0;
-    for (std::size_t k = 0; k < 4; ++k) {
-      const Vec2 c = pos(q[k]);
-      area[k] = cross(pos(q[(k + 1) % 4]) - c, pos(q[(k + 3) % 4]) - c);
-      mean += 0.25 * area[k];
-    }
-    const double taper = mean > 0.0 ? std::min({area[0], area[1], area[2], area[3]}) / mean : 0.0;
-    sum += std::min(taper, min_scaled_jacobian(pos(q[0]), pos(q[1]), pos(q[2]), pos(q[3])));
+    const Vec2 a = pos(q[0]), b = pos(q[1]), c = pos(q[2]), d = pos(q[3]);
+    sum += std::min(quad_taper(a, b, c, d), min_scaled_jacobian(a, b, c, d));
   }
   return sum / static_cast<double>(m.quads.size());
 }
@@ -1807,19 +1814,6 @@ void sweep_nodes(std::vector<Vec2>& pos,
     }
     if (!moved) break;
   }
-}
-
-/// quality.md's taper of the quad p0..p3: the smallest corner triangle over their mean (0
-/// for a quad of no positive area).
-double quad_taper(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3) {
-  const Vec2 p[4] = {p0, p1, p2, p3};
-  double a[4], sum = 0.0;
-  for (std::size_t i = 0; i < 4; ++i) {
-    a[i] = cross(p[(i + 1) % 4] - p[i], p[(i + 3) % 4] - p[i]);
-    sum += a[i];
-  }
-  if (!(sum > 0.0)) return 0.0;
-  return std::min({a[0], a[1], a[2], a[3]}) / (0.25 * sum);
 }
 
 /// Which of quality.md's midline measures the quad p0..p3 fails: bit 1 skew >= 30 degrees
