@@ -2234,12 +2234,14 @@ void untaper_nodes(std::vector<Vec2>& pos,
   };
   // Per quad round the node being moved: its faults before the move.
   std::vector<unsigned> faults;
-  // The sum of (1 - taper)^2 over the quads round v, their worst scaled Jacobian, and the
-  // largest area ratio between one of them and a quad across an edge of it; with `faults`
-  // filled, infinity when a quad has a fault it did not have.
-  const auto measure = [&](std::uint32_t v, double& worst, double& ratio) {
+  // The sum of (1 - taper)^2 over the quads round v, their worst scaled Jacobian and the sum
+  // of their scaled Jacobians, and the largest area ratio between one of them and a quad
+  // across an edge of it; with `faults` filled, infinity when a quad has a fault it did not
+  // have.
+  const auto measure = [&](std::uint32_t v, double& worst, double& jacobians, double& ratio) {
     double sum = 0.0;
     worst = std::numeric_limits<double>::infinity();
+    jacobians = 0.0;
     ratio = 1.0;
     for (std::size_t i = 0; i < around[v].size(); ++i) {
       const std::uint32_t q = around[v][i];
@@ -2250,7 +2252,9 @@ void untaper_nodes(std::vector<Vec2>& pos,
       else if (f & ~faults[i]) return std::numeric_limits<double>::infinity();
       const double off = 1.0 - quad_taper(a, b, c, d);
       sum += off * off;
-      worst = std::min(worst, min_scaled_jacobian(a, b, c, d));
+      const double jq = min_scaled_jacobian(a, b, c, d);
+      worst = std::min(worst, jq);
+      jacobians += jq;
       const double aq = area(q);
       for (std::uint32_t w : across[q]) {
         if (w == kNone) continue;
@@ -2285,15 +2289,16 @@ void untaper_nodes(std::vector<Vec2>& pos,
     if (simple) {
       goal = (1.0 / static_cast<double>(around[v].size())) * goal;
       faults.clear();
-      double worst_before = 0.0, ratio_before = 1.0;
-      const double before = measure(v, worst_before, ratio_before);
+      double worst_before = 0.0, jacobians_before = 0.0, ratio_before = 1.0;
+      const double before = measure(v, worst_before, jacobians_before, ratio_before);
       const double ratio_cap = std::max(ratio_before, kUntaperAreaRatio);
       for (double step : {1.0, 0.5, 0.25}) {
         pos[v] = lerp(old, goal, step);
-        double worst = 0.0, ratio = 1.0;
-        const double after = measure(v, worst, ratio);
+        double worst = 0.0, jacobians = 0.0, ratio = 1.0;
+        const double after = measure(v, worst, jacobians, ratio);
         if (after < before - kUntaperGain && settled(worst) >= settled(worst_before) &&
-            keeps_sign(worst_before, worst) && ratio <= ratio_cap)
+            keeps_sign(worst_before, worst) && ratio <= ratio_cap &&
+            jacobians >= jacobians_before - kUntaperJacobianSlack)
           break;
         pos[v] = old;
       }
