@@ -126,12 +126,12 @@ void MedialAxis::find_spread_zones() {
     double len = 0.0;
   };
   // An uncovered stretch: from the end of segment i's covered range through wholly uncovered
-  // segments (`whole`) to the start of segment k's; `root` the vertex both ends map to.
+  // segments (`whole`) to the start of segment k's. Its root, the vertex both ends map to,
+  // is cover[i].hi_vertex.
   struct Stretch {
     std::uint32_t i = 0, k = 0;
     std::vector<std::uint32_t> whole;
     double length = 0.0;
-    MaVertexId root;
   };
   // A zone over the boundary from s1 on segment st.i, through st.whole, to s2 on segment st.k
   // (its pieces and length; its steps are the caller's).
@@ -174,7 +174,7 @@ void MedialAxis::find_spread_zones() {
     const auto walk = [&](MaEdgeId first, const BoundarySite& near, double& share) {
       std::vector<Walked> path;
       MaEdgeId e = first;
-      MaVertexId from = st.root;
+      MaVertexId from = a.hi_vertex;  // the root
       share = kSpreadShare;
       while (path.size() < edges_.size()) {
         const MaEdge& ed = edges_[e.index()];
@@ -314,7 +314,6 @@ void MedialAxis::find_spread_zones() {
       // Both ends at one vertex of degree 2, whose two edges hold the ends: the axis runs on
       // both ways from the vertex the whole stretch maps to.
       const MaVertexId root = a.hi_vertex;
-      st.root = root;
       if (b.lo_vertex != root || vertices_[root.index()].degree != 2 ||
           a.hi_edge == b.lo_edge || !(vertices_[root.index()].radius > 0.0))
         continue;
