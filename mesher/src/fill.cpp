@@ -10,40 +10,16 @@
 #include <optional>
 #include <sstream>
 
-#include "laytracks/mesher/quality.hpp"
 #include "laytracks/brep/error.hpp"
+#include "laytracks/mesher/build_quads.hpp"
+#include "laytracks/mesher/quality.hpp"
 
 namespace laytracks::mesher_detail {
 
-const char* to_string(FillKind kind) {
-  switch (kind) {
-    case FillKind::Grid:
-      return "grid";
-    case FillKind::Diamond:
-      return "diamond";
-    case FillKind::Quad:
-      return "quad";
-    case FillKind::Ring:
-      return "ring";
-    case FillKind::Split:
-      return "split";
-    case FillKind::Rows:
-      return "rows";
-    case FillKind::Cut:
-      return "cut";
-    case FillKind::Pairs:
-      return "pairs";
-    case FillKind::Strip:
-      return "strip";
-    case FillKind::Ogrid:
-      return "ogrid";
-    case FillKind::Arms:
-      return "arms";
-    case FillKind::Taper:
-      return "taper";
-  }
-  return "?";
-}
+static_assert(static_cast<std::size_t>(FillKind::Three) + 1 == kTemplateNames.size(),
+              "a name for every face template");
+
+const char* to_string(FillKind kind) { return kTemplateNames[static_cast<std::size_t>(kind)]; }
 
 LocalFrame::LocalFrame(const std::vector<Vec2>& pos, const std::vector<std::uint32_t>& ids)
     : origin_(pos[ids[0]]) {
@@ -338,6 +314,107 @@ std::optional<FaceMesh> fill_grid(const FaceInput& face, const Strip& st) {
   FaceMesh r = m.finish();
   if (!r.interior.empty() && r.min_jacobian < kAcceptJacobian) relax(r, face, 30);
   return r;
+}
+
+/// Quads of a four-sided region given by its sides' node ids (counter-clockwise, consecutive
+/// sides sharing their end nodes, opposite sides of equal counts): transfinite interpolation
+/// between the sides, as fill_grid does.
+void grid_into(Builder& m, const std::vector<std::uint32_t>& s0, const std::vector<std::uint32_t>& s1,
+               const std::vector<std::uint32_t>& s2, const std::vector<std::uint32_t>& s3) {
+  const auto b = static_cast<std::uint32_t>(s0.size() - 1);
+  const auto h = static_cast<std::uint32_t>(s1.size() - 1);
+  std::vector<std::uint32_t> id((b + 1) * (h + 1), kNoId);
+  auto g = [&](std::uint32_t i, std::uint32_t j) -> std::uint32_t& { return id[j * (b + 1) + i]; };
+  for (std::uint32_t i = 0; i <= b; ++i) {
+    g(i, 0) = s0[i];
+    g(i, h) = s2[b - i];
+  }
+  for (std::uint32_t j = 0; j <= h; ++j) {
+    g(b, j) = s1[j];
+    g(0, j) = s3[h - j];
+  }
+  auto arc = [&](auto node_of, std::uint32_t count) {
+    std::vector<double> t(count + 1, 0.0);
+    for (std::uint32_t k = 1; k <= count; ++k)
+      t[k] = t[k - 1] + distance(m.pos(node_of(k - 1)), m.pos(node_of(k)));
+    for (double& x : t) x = t[count] > 0.0 ? x / t[count] : 0.0;
+    return t;
+  };
+  const auto u0 = arc([&](std::uint32_t i) { return g(i, 0); }, b);
+  const auto u1 = arc([&](std::uint32_t i) { return g(i, h); }, b);
+  const auto v0 = arc([&](std::uint32_t j) { return g(0, j); }, h);
+  const auto v1 = arc([&](std::uint32_t j) { return g(b, j); }, h);
+  const Vec2 c00 = m.pos(g(0, 0)), c10 = m.pos(g(b, 0)), c01 = m.pos(g(0, h)), c11 = m.pos(g(b, h));
+  for (std::uint32_t j = 1; j < h; ++j) {
+    for (std::uint32_t i = 1; i < b; ++i) {
+      const double u = u0[i] * (1.0 - v0[j]) + u1[i] * v0[j];
+      const double v = v0[j] * (1.0 - u) + v1[j] * u;
+      const Vec2 p = (1.0 - v) * m.pos(g(i, 0)) + v * m.pos(g(i, h)) + (1.0 - u) * m.pos(g(0, j)) +
+                     u * m.pos(g(b, j)) -
+                     ((1.0 - u) * (1.0 - v) * c00 + u * (1.0 - v) * c10 + (1.0 - u) * v * c01 +
+                      u * v * c11);
+      g(i, j) = m.add(p);
+    }
+  }
+  for (std::uint32_t j = 0; j < h; ++j)
+    for (std::uint32_t i = 0; i < b; ++i) m.quad(g(i, j), g(i + 1, j), g(i + 1, j + 1), g(i, j + 1));
+}
+
+/// Three grids: a four-sided face whose two longer sides meet at one corner, each longer by
+/// the same d edges than the side opposite it (a grid needs equal opposite sides). One inner
+/// node X of valence three joins the corner opposite the longer sides' (d edges), a node of
+/// each longer side (so many edges as the shorter side beside it), and the three regions
+/// between are grids. The one irregular node is the whole price of the mismatch.
+constexpr double kThreeFloor = 0.5;
+/// Strips narrower than this (in edges) keep the strip templates: three grids in a corridor
+/// one edge wide are slivers (the tray's one- and two-edge corridors at the floor's corners
+/// went to aspect 5-8).
+constexpr std::uint32_t kThreeShortest = 2;
+
+std::optional<FaceMesh> fill_three(const FaceInput& face, const Strip& st) {
+  if (st.cap2.size() < 2 || st.cap1.size() < 2) return std::nullopt;
+  const std::array<const std::vector<std::uint32_t>*, 4> side{&st.cap1, &st.rail1, &st.cap2, &st.rail2};
+  auto edges = [&](std::size_t k) { return static_cast<std::uint32_t>(side[k % 4]->size() - 1); };
+  for (std::size_t rot = 0; rot < 4; ++rot) {
+    const std::uint32_t es = edges(rot), ee = edges(rot + 1), en = edges(rot + 2), ew = edges(rot + 3);
+    if (es <= en || ee <= ew || es - en != ee - ew || std::min(en, ew) < kThreeShortest) continue;
+    const std::uint32_t d = es - en;
+    const std::vector<std::uint32_t>& S = *side[rot];
+    const std::vector<std::uint32_t>& E = *side[(rot + 1) % 4];
+    const std::vector<std::uint32_t>& N = *side[(rot + 2) % 4];
+    const std::vector<std::uint32_t>& W = *side[(rot + 3) % 4];
+    Builder m(face, FillKind::Three);
+    const std::uint32_t p0 = S.front(), p2 = E.back(), p3 = N.back();
+    const std::uint32_t m1 = S[d], m2 = E[ew];
+    const Vec2 x = m.pos(p3) + 0.5 * ((m.pos(m1) - m.pos(p0)) + (m.pos(m2) - m.pos(p2)));
+    const std::uint32_t xi = m.add(x);
+    // A chain of `count` edges from node a to node b, its inner nodes on the segment.
+    auto chain = [&](std::uint32_t a, std::uint32_t b, std::uint32_t count) {
+      std::vector<std::uint32_t> c{a};
+      for (std::uint32_t k = 1; k < count; ++k)
+        c.push_back(m.add(lerp(m.pos(a), m.pos(b), static_cast<double>(k) / count)));
+      c.push_back(b);
+      return c;
+    };
+    const std::vector<std::uint32_t> to_p3 = chain(xi, p3, d), to_m1 = chain(xi, m1, ew),
+                                     to_m2 = chain(xi, m2, en);
+    auto reversed = [](std::vector<std::uint32_t> v) {
+      std::reverse(v.begin(), v.end());
+      return v;
+    };
+    auto run = [](const std::vector<std::uint32_t>& v, std::uint32_t from, std::uint32_t to) {
+      return std::vector<std::uint32_t>(v.begin() + from, v.begin() + to + 1);
+    };
+    grid_into(m, run(S, 0, d), reversed(to_m1), to_p3, W);
+    grid_into(m, run(S, d, es), run(E, 0, ew), reversed(to_m2), to_m1);
+    grid_into(m, to_m2, run(E, ew, ee), N, reversed(to_p3));
+    FaceMesh r = m.finish();
+    relax(r, face, 30);
+    // A worse corner means the face is not this shape: the later templates get their turn.
+    if (r.min_jacobian < kThreeFloor) return std::nullopt;
+    return r;
+  }
+  return std::nullopt;
 }
 
 /// Diamond: caps of one edge, rails differing by 2d edges, the longer bending at an MA point.
@@ -1576,19 +1653,200 @@ double mean_shape(const FaceMesh& m, const FaceInput& face) {
 /// mean_shape compared in whole steps of this (a later template must be better by one).
 constexpr double kShapeStep = 0.01;
 
+/// Reflex cut: a face with a reflex corner (an L, a T, the corner region between tracks of
+/// different widths) is cut in two by a straight chord from that corner to another node of
+/// the face, and each piece is filled by any template (a piece with four corners is read as a
+/// strip whose first cap holds the chord). Chords leave every corner they cut near a right
+/// angle or flat (kReflexCutSlack), so that the pieces are grids where their counts match.
+/// The chord gets the inner nodes that make both pieces' node counts even, spaced as close as
+/// parity allows to the mean edge at its two ends. At most kReflexCuts chords are tried, best
+/// first; the quads with the best quantised worst corner win, then the best mean_shape.
+constexpr double kReflexCutMin = 201.0 * kPi / 180.0;
+constexpr double kReflexCutSlack = 24.5 * kPi / 180.0;
+constexpr std::size_t kReflexCuts = 3;
+constexpr double kReflexSlackStep = 1.0 * kPi / 180.0;
+constexpr double kReflexLengthStep = 0.1;
+/// Only faces up to this size, and pieces are cut again only once (depth).
+constexpr std::size_t kReflexCutNodes = 160;
+constexpr int kReflexCutDepth = 1;
+
+/// How far an angle of a piece's corner is from 90 degrees or flat (a reflex part counts
+/// from flat).
+double corner_slack(double a) {
+  return std::min(std::abs(a - 0.5 * kPi), std::abs(a - kPi));
+}
+
+/// The sides of a piece: four sides boundary, rail, boundary, rail from its corners (interior
+/// angles below kCornerAngle, none reflex), the side holding edge `mark` first; otherwise one
+/// boundary side of every edge.
+std::vector<FaceSide> piece_sides(const std::vector<Vec2>& poly, std::uint32_t mark) {
+  const auto n = static_cast<std::uint32_t>(poly.size());
+  std::vector<std::uint32_t> corners;
+  bool reflex = false;
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const double a = interior_angle(poly, k);
+    if (a >= kReflexCutMin) reflex = true;
+    if (a < kCornerAngle) corners.push_back(k);
+  }
+  std::vector<FaceSide> sides;
+  if (reflex || corners.size() != 4) {
+    FaceSide all;
+    all.kind = FaceSide::Kind::Boundary;
+    all.edges = n;
+    sides.push_back(all);
+    return sides;
+  }
+  // The side holding edge mark (from node mark to mark + 1).
+  std::size_t first = 3;
+  for (std::size_t c = 0; c < 4; ++c) {
+    const std::uint32_t from = corners[c], edges = (corners[(c + 1) % 4] + n - from) % n;
+    if ((mark + n - from) % n < edges) first = c;
+  }
+  for (std::size_t c = 0; c < 4; ++c) {
+    const std::uint32_t from = corners[(first + c) % 4], to = corners[(first + c + 1) % 4];
+    FaceSide s;
+    s.kind = c % 2 == 0 ? FaceSide::Kind::Boundary : FaceSide::Kind::Rail;
+    s.first = from;
+    s.edges = (to + n - from) % n;
+    sides.push_back(s);
+  }
+  return sides;
+}
+
+bool has_reflex(const std::vector<Vec2>& poly) {
+  for (std::size_t k = 0; k < poly.size(); ++k)
+    if (interior_angle(poly, k) >= kReflexCutMin) return true;
+  return false;
+}
+
+std::optional<FaceMesh> fill_reflex(const FaceInput& face, int depth) {
+  const auto n = static_cast<std::uint32_t>(face.cycle.size());
+  if (depth > kReflexCutDepth || n < 8 || n > kReflexCutNodes) return std::nullopt;
+  const std::vector<Vec2>& p = face.cycle;
+  std::vector<double> angle(n);
+  for (std::uint32_t k = 0; k < n; ++k) angle[k] = interior_angle(p, k);
+  auto edge = [&](std::uint32_t k) { return distance(p[k], p[(k + 1) % n]); };
+  struct Cut {
+    double slack;
+    double length;
+    std::uint32_t r, t;
+  };
+  std::vector<Cut> cuts;
+  for (std::uint32_t r = 0; r < n; ++r) {
+    if (angle[r] < kReflexCutMin) continue;
+    const Vec2 out_r = p[(r + 1) % n] - p[r];
+    for (std::uint32_t gap = 2; gap + 2 <= n; ++gap) {
+      const std::uint32_t t = (r + gap) % n;
+      const Vec2 c = p[t] - p[r];
+      if (!(norm(c) > 0.0)) continue;
+      // The chord's angles in the two pieces at r (piece A runs r .. t along the cycle).
+      const double ra = ccw_angle(out_r, c), rb = angle[r] - ra;
+      if (ra <= 0.0 || rb <= 0.0) continue;
+      const double ta = ccw_angle(-1.0 * c, p[(t + n - 1) % n] - p[t]);
+      const double tb = angle[t] - ta;
+      if (ta <= 0.0 || tb <= 0.0) continue;
+      const double slack = std::max({corner_slack(ra), corner_slack(rb), corner_slack(ta), corner_slack(tb)});
+      if (slack > kReflexCutSlack) continue;
+      bool crosses = false;
+      for (std::uint32_t k = 0; k < n && !crosses; ++k) {
+        const std::uint32_t k1 = (k + 1) % n;
+        if (k == r || k == t || k1 == r || k1 == t) continue;
+        crosses = mesher_detail::segments_meet(p[r], p[t], p[k], p[k1]);
+      }
+      if (crosses || !inside_polygon(0.5 * (p[r] + p[t]), p)) continue;
+      cuts.push_back({slack, norm(c), r, t});
+    }
+  }
+  if (cuts.empty()) return std::nullopt;
+  // Best first: least slack, then shortest, each in whole steps (kReflexSlackStep, and
+  // kReflexLengthStep of the face's mean edge) so that chords equal but for rounding (mirror
+  // images) keep their order, by node index, in every pose of a part.
+  double mean_edge = 0.0;
+  for (std::uint32_t k = 0; k < n; ++k) mean_edge += edge(k) / n;
+  auto rank = [&](const Cut& c) {
+    return std::make_tuple(std::round(c.slack / kReflexSlackStep),
+                           std::floor(c.length / (kReflexLengthStep * mean_edge)), c.r, c.t);
+  };
+  std::sort(cuts.begin(), cuts.end(), [&](const Cut& a, const Cut& b) { return rank(a) < rank(b); });
+  // A chord and its reverse (both ends reflex) are one cut.
+  std::optional<FaceMesh> best;
+  double best_shape = 0.0;
+  std::size_t tried = 0;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> done;
+  for (const Cut& cut : cuts) {
+    if (tried == kReflexCuts) break;
+    const std::pair<std::uint32_t, std::uint32_t> key = std::minmax(cut.r, cut.t);
+    if (std::find(done.begin(), done.end(), key) != done.end()) continue;
+    done.push_back(key);
+    ++tried;
+    const std::uint32_t r = cut.r, t = cut.t, gap = (t + n - r) % n;
+    const double h = 0.25 * (edge(r) + edge((r + n - 1) % n) + edge(t) + edge((t + n - 1) % n));
+    // Inner nodes k: gap + k + 1 even, spacing nearest h in ratio.
+    auto spacing_error = [&](std::int64_t k) { return std::abs(std::log(cut.length / static_cast<double>(k + 1) / h)); };
+    std::int64_t k = std::max<std::int64_t>(0, std::llround(cut.length / h) - 1);
+    if ((gap + k + 1) % 2 != 0) k = k == 0 || spacing_error(k + 1) < spacing_error(k - 1) ? k + 1 : k - 1;
+    Builder m(face, FillKind::Reflex);
+    std::vector<std::uint32_t> chord;  // from t to r, inner nodes only
+    for (std::int64_t i = 1; i <= k; ++i)
+      chord.push_back(m.add(lerp(p[t], p[r], static_cast<double>(i) / static_cast<double>(k + 1))));
+    bool ok = true;
+    for (int piece = 0; piece < 2 && ok; ++piece) {
+      // Piece 0: r .. t along the cycle, then the chord back; piece 1: t .. r, then the chord.
+      const std::uint32_t from = piece == 0 ? r : t, to = piece == 0 ? t : r;
+      std::vector<std::uint32_t> ids;
+      for (std::uint32_t i = from;; i = (i + 1) % n) {
+        ids.push_back(i);
+        if (i == to) break;
+      }
+      const auto mark = static_cast<std::uint32_t>(ids.size() - 1);  // first chord edge
+      if (piece == 0) ids.insert(ids.end(), chord.begin(), chord.end());
+      else ids.insert(ids.end(), chord.rbegin(), chord.rend());
+      FaceInput sub;
+      for (std::uint32_t id : ids) sub.cycle.push_back(m.pos(id));
+      if (sub.cycle.size() < 4 || sub.cycle.size() % 2 != 0) {
+        ok = false;
+        break;
+      }
+      sub.sides = piece_sides(sub.cycle, mark);
+      // A piece with neither four corners nor a reflex corner to cut again (within the
+      // depth) is no better read than the whole face: no cut.
+      if (sub.sides.size() != 4 && (depth + 1 > kReflexCutDepth || !has_reflex(sub.cycle))) {
+        ok = false;
+        break;
+      }
+      const std::optional<FaceMesh> filled = fill_any(sub, depth + 1);
+      if (!filled || !(filled->min_jacobian > kMinValidJacobian)) {
+        ok = false;
+        break;
+      }
+      m.embed(*filled, ids);
+    }
+    if (!ok) continue;
+    FaceMesh out = m.finish();
+    const double shape = std::floor(mean_shape(out, face) / kShapeStep);
+    if (!best || quantised(out.min_jacobian) > quantised(best->min_jacobian) ||
+        (quantised(out.min_jacobian) == quantised(best->min_jacobian) && shape > best_shape)) {
+      best = std::move(out);
+      best_shape = shape;
+    }
+  }
+  return best;
+}
+
 /// The unstructured templates (split and fan split from either parity, cut; fan split only
 /// when `fans`); of those whose worst corner is acceptable, the one whose quads are best on
 /// average (mean_shape, in whole kShapeStep steps, the first on ties). `consider` sees every
 /// result.
 template <class Consider>
-std::optional<FaceMesh> pick_unstructured(const FaceInput& face, bool fans, Consider&& consider) {
+std::optional<FaceMesh> pick_unstructured(const FaceInput& face, bool fans, int depth, Consider&& consider) {
   std::optional<FaceMesh> pick;
   double pick_shape = 0.0;
-  for (int k = 0; k < 5; ++k) {
-    if (!fans && (k == 2 || k == 3)) continue;
+  for (int k = 0; k < 6; ++k) {
+    if (!fans && (k == 2 || k == 3 || k == 5)) continue;
     std::optional<FaceMesh> m = k < 2   ? fill_split(face, static_cast<std::uint32_t>(k))
                                 : k < 4 ? fill_fan_split(face, static_cast<std::uint32_t>(k - 2))
-                                        : fill_cut(face);
+                                : k < 5 ? fill_cut(face)
+                                        : fill_reflex(face, depth);
     if (m && m->min_jacobian >= kAcceptJacobian) {
       const double shape = std::floor(mean_shape(*m, face) / kShapeStep);
       if (!pick || shape > pick_shape) {
@@ -1627,6 +1885,8 @@ std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
     if (consider(fill_grid(face, st))) return best;
   for (const Strip& st : strips)
     if (consider(fill_diamond(face, st))) return best;
+  for (const Strip& st : strips)
+    if (consider(fill_three(face, st))) return best;
   if (n == 4) {
     if (consider(fill_quad(face))) return best;
     if (consider(fill_ring(face))) return best;
@@ -1640,13 +1900,15 @@ std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
   // Read by its corners instead of its sides (a face whose rails bend, or a remainder).
   for (FaceMesh& g : corner_grids(face))
     if (consider(std::move(g))) return best;
+  if (const std::optional<Strip> st = corner_strip(face.cycle, 0))
+    if (consider(fill_three(face, *st))) return best;
   if (consider(fill_arms(face, depth))) return best;
   if (consider(fill_ogrid(face))) return best;
   // The O(n^3) templates only for small faces, or when nothing structured gave valid quads.
   const bool costly_ok = n <= kLargeFace || !best ||
                          best->min_jacobian < (n <= kHugeFace ? kLargeFaceFloor : kHugeFaceFloor);
   if (n >= 6 && costly_ok) {
-    std::optional<FaceMesh> pick = pick_unstructured(face, true, consider);
+    std::optional<FaceMesh> pick = pick_unstructured(face, true, depth, consider);
     if (pick) return pick;
   }
   if (n >= 4 && costly_ok) consider(fill_pairs(face));
@@ -1705,7 +1967,7 @@ std::optional<FaceMesh> fill_cavity(const FaceInput& face) {
   if (n >= 6) {
     // No fan split: its 60 untangling sweeps cost half the re-fill's time, and without it the
     // 20 parts' worst quads were as good or better (cgal_wheel_16_spokes 0.747 -> 0.779).
-    std::optional<FaceMesh> pick = pick_unstructured(face, false, consider);
+    std::optional<FaceMesh> pick = pick_unstructured(face, false, 0, consider);
     if (pick) return pick;
   }
   if (!b.best || b.best->min_jacobian < kAcceptJacobian) consider(fill_pairs(face));

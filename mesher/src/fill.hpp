@@ -43,6 +43,8 @@ enum class FillKind : std::uint8_t {
   Ogrid,    ///< a round face: a rectangle of quads in the middle, rings of quads round it
   Arms,     ///< a junction of three or more arms: rows from each arm's cap, the rest inside
   Taper,    ///< a strip whose caps differ by 4 edges or more: rows narrowing step by step
+  Reflex,   ///< a face cut in two at a reflex corner, each piece filled by any template
+  Three,    ///< four sides, the two longer ones meeting: three grids round one inner node
 };
 const char* to_string(FillKind kind);
 
