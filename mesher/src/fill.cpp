@@ -13,10 +13,11 @@
 #include "laytracks/brep/error.hpp"
 #include "laytracks/mesher/build_quads.hpp"
 #include "laytracks/mesher/quality.hpp"
+#include "cdt.hpp"
 
 namespace laytracks::mesher_detail {
 
-static_assert(static_cast<std::size_t>(FillKind::Three) + 1 == kTemplateNames.size(),
+static_assert(static_cast<std::size_t>(FillKind::Lattice) + 1 == kTemplateNames.size(),
               "a name for every face template");
 
 const char* to_string(FillKind kind) { return kTemplateNames[static_cast<std::size_t>(kind)]; }
@@ -706,6 +707,51 @@ std::vector<std::array<std::uint32_t, 4>> merge_coarse_pairs(
   return out;
 }
 
+/// The quads of a split coarse mesh: each coarse quad of `merged` into four through its edge
+/// midpoints and centre, each triangle of `tris` left unmerged into three through its edge
+/// midpoints and centre. Coarse node k is face node id[k]; those below `half` are the
+/// coarse polygon (face nodes offset, offset + 2, ...), whose edges' middle nodes are the face
+/// nodes between them; any other coarse edge gets a new node at its middle.
+void split_into(Builder& m, const std::vector<std::uint32_t>& id, std::uint32_t half, std::uint32_t offset,
+                const std::vector<std::array<std::uint32_t, 3>>& tris,
+                const std::vector<std::array<std::uint32_t, 4>>& merged) {
+  const std::uint32_t n = m.n();
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mids;
+  auto mid = [&](std::uint32_t i, std::uint32_t j) -> std::uint32_t {
+    if (i < half && j < half) {
+      if ((i + 1) % half == j) return (offset + 2 * i + 1) % n;  // a coarse boundary edge
+      if ((j + 1) % half == i) return (offset + 2 * j + 1) % n;
+    }
+    const auto key = std::minmax(i, j);
+    const auto it = mids.find(key);
+    if (it != mids.end()) return it->second;
+    const std::uint32_t made = m.add(lerp(m.pos(id[i]), m.pos(id[j]), 0.5));
+    mids.emplace(key, made);
+    return made;
+  };
+  for (const auto& c : merged) {
+    // A coarse quad: four quads through its edge midpoints and its centre.
+    std::array<std::uint32_t, 4> e{};
+    Vec2 g{0.0, 0.0};
+    for (std::size_t k = 0; k < 4; ++k) {
+      e[k] = mid(c[k], c[(k + 1) % 4]);
+      g = g + 0.125 * (m.pos(id[c[k]]) + m.pos(e[k]));
+    }
+    const std::uint32_t centre = m.add(g);
+    for (std::size_t k = 0; k < 4; ++k) m.quad(id[c[k]], e[k], centre, e[(k + 3) % 4]);
+  }
+  for (const auto& t : tris) {
+    if (t[0] == kNoId) continue;  // merged into a coarse quad
+    const std::uint32_t ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
+    const Vec2 g = (1.0 / 6.0) * (m.pos(id[t[0]]) + m.pos(id[t[1]]) + m.pos(id[t[2]]) + m.pos(ab) +
+                                  m.pos(bc) + m.pos(ca));
+    const std::uint32_t c = m.add(g);
+    m.quad(id[t[0]], ab, c, ca);
+    m.quad(id[t[1]], bc, c, ab);
+    m.quad(id[t[2]], ca, c, bc);
+  }
+}
+
 /// Split: the even (or odd) cycle nodes form a coarse polygon whose edges each have one face
 /// node in their middle; the coarse polygon is triangulated and every triangle split into three
 /// quads through its centre and its edge midpoints. Every face node then has an edge into the
@@ -735,39 +781,158 @@ std::optional<FaceMesh> fill_split(const FaceInput& face, std::uint32_t offset) 
   if (tris.empty()) return std::nullopt;
   const std::vector<std::array<std::uint32_t, 4>> merged = merge_coarse_pairs(tris, coarse, mid_at, score);
   Builder m(face, FillKind::Split);
-  auto node = [&](std::uint32_t k) { return (offset + 2 * k) % n; };
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> mids;
-  auto mid = [&](std::uint32_t i, std::uint32_t j) -> std::uint32_t {
-    if ((i + 1) % half == j) return (offset + 2 * i + 1) % n;  // a coarse boundary edge
-    if ((j + 1) % half == i) return (offset + 2 * j + 1) % n;
-    const auto key = std::minmax(i, j);
-    const auto it = mids.find(key);
-    if (it != mids.end()) return it->second;
-    const std::uint32_t id = m.add(lerp(coarse[i], coarse[j], 0.5));
-    mids.emplace(key, id);
-    return id;
-  };
-  for (const auto& c : merged) {
-    // A coarse quad: four quads through its edge midpoints and its centre.
-    std::array<std::uint32_t, 4> e{};
-    Vec2 g{0.0, 0.0};
-    for (std::size_t k = 0; k < 4; ++k) {
-      e[k] = mid(c[k], c[(k + 1) % 4]);
-      g = g + 0.125 * (coarse[c[k]] + m.pos(e[k]));
+  std::vector<std::uint32_t> id(half);
+  for (std::uint32_t k = 0; k < half; ++k) id[k] = (offset + 2 * k) % n;
+  split_into(m, id, half, offset, tris, merged);
+  FaceMesh r = m.finish();
+  relax(r, face, 30);
+  return r;
+}
+
+/// Lawson flips for the split's score: a diagonal shared by two coarse triangles is swapped
+/// for the quadrilateral's other one when that is convex and raises the worse of the two
+/// triangles' scores (the worst corner of the quads each is split into) by more than
+/// kFlipMargin. The Delaunay triangulation knows nothing of the face nodes between coarse
+/// nodes: where the boundary bends at one, the triangle on that coarse edge needs its third
+/// corner elsewhere. Up to kLatticeFlipPasses passes over the diagonals, in the order of
+/// their end nodes (the same in every pose), each triangle changed at most once a pass.
+constexpr double kFlipMargin = 1e-6;
+constexpr int kLatticeFlipPasses = 8;
+
+template <class Score>
+void improve_by_flips(std::vector<std::array<std::uint32_t, 3>>& tris, const std::vector<Vec2>& coarse,
+                      Score score) {
+  for (int pass = 0; pass < kLatticeFlipPasses; ++pass) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> by_edge;
+    for (std::size_t t = 0; t < tris.size(); ++t)
+      for (std::size_t k = 0; k < 3; ++k) by_edge[std::minmax(tris[t][k], tris[t][(k + 1) % 3])].push_back(t);
+    std::vector<bool> touched(tris.size(), false);
+    bool flipped = false;
+    for (const auto& [edge, ts] : by_edge) {
+      if (ts.size() != 2 || touched[ts[0]] || touched[ts[1]]) continue;
+      // t1 runs i -> j -> k, t2 j -> i -> l: the quadrilateral is i, l, j, k.
+      std::array<std::uint32_t, 3> t1 = tris[ts[0]], t2 = tris[ts[1]];
+      while (!(t1[0] == edge.first || t1[0] == edge.second) || !(t1[1] == edge.first || t1[1] == edge.second))
+        std::rotate(t1.begin(), t1.begin() + 1, t1.end());
+      const std::uint32_t i = t1[0], j = t1[1], k = t1[2];
+      std::uint32_t l = t2[0];
+      for (std::uint32_t x : t2)
+        if (x != i && x != j) l = x;
+      const Vec2 I = coarse[i], J = coarse[j], Kp = coarse[k], L = coarse[l];
+      // Convex: the new diagonal k-l crosses i-j.
+      if (!(cross(J - L, Kp - L) > 0.0 && cross(I - Kp, L - Kp) > 0.0)) continue;
+      const double now = std::min(score(i, j, k), score(j, i, l));
+      const double then = std::min(score(l, j, k), score(k, i, l));
+      if (then > now + kFlipMargin) {
+        tris[ts[0]] = {l, j, k};
+        tris[ts[1]] = {k, i, l};
+        touched[ts[0]] = touched[ts[1]] = true;
+        flipped = true;
+      }
     }
-    const std::uint32_t centre = m.add(g);
-    for (std::size_t k = 0; k < 4; ++k) m.quad(node(c[k]), e[k], centre, e[(k + 3) % 4]);
+    if (!flipped) break;
   }
-  for (const auto& t : tris) {
-    if (t[0] == kNoId) continue;  // merged into a coarse quad
-    const std::uint32_t ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
-    const Vec2 g = (1.0 / 6.0) * (coarse[t[0]] + coarse[t[1]] + coarse[t[2]] + m.pos(ab) +
-                                  m.pos(bc) + m.pos(ca));
-    const std::uint32_t c = m.add(g);
-    m.quad(node(t[0]), ab, c, ca);
-    m.quad(node(t[1]), bc, c, ab);
-    m.quad(node(t[2]), ca, c, bc);
+}
+
+/// Lattice split (`fill_lattice`): split with points inside. The split template's coarse
+/// triangles span the whole face, so in a face many elements wide its quads are as long as
+/// the face. Here the coarse polygon (every other face node, offset by `offset`) gets inner
+/// coarse nodes on a square lattice of the coarse polygon's mean edge, turned to the face's
+/// dominant edge direction (the angle whose fourfold multiple is the length-weighted mean of
+/// the edges' fourfold angles, so a face with straight sides lines up with them), centred on
+/// the polygon's box; a lattice point is kept when it is inside the polygon and at least
+/// kLatticeClear lattice steps from its edges. The constrained Delaunay triangulation of the
+/// polygon and those points (CGAL, cdt.cpp) gives coarse triangles about the lattice step
+/// wide; pairs become coarse quads as in split (a lattice square's two halves make a square),
+/// and each coarse quad is split into four quads, each triangle left into three. It all runs
+/// in the face's LocalFrame, so every pose of a part builds the same lattice and the same
+/// triangulation, ties of four points on a circle included. Faces with no lattice point
+/// inside are split's.
+constexpr double kLatticeClear = 0.75;
+/// At most this many lattice cells in the polygon's box (a face some 400 x 400 elements).
+constexpr double kLatticeMaxPoints = 40000.0;
+
+std::optional<FaceMesh> fill_lattice(const FaceInput& face, std::uint32_t offset) {
+  const auto n = static_cast<std::uint32_t>(face.cycle.size());
+  if (n < 8 || n % 2 != 0) return std::nullopt;
+  const std::uint32_t half = n / 2;
+  std::vector<std::uint32_t> ring(n);
+  for (std::uint32_t k = 0; k < n; ++k) ring[k] = k;
+  const LocalFrame frame(face.cycle, ring);
+  std::vector<Vec2> local;  // coarse nodes in the frame: the polygon, then the lattice points
+  for (std::uint32_t k = 0; k < half; ++k) local.push_back(frame.to_local(face.cycle[(offset + 2 * k) % n]));
+  double length = 0.0, c4 = 0.0, s4 = 0.0;
+  for (std::uint32_t k = 0; k < half; ++k) {
+    const Vec2 d = local[(k + 1) % half] - local[k];
+    const double l = norm(d), a = 4.0 * std::atan2(d.y, d.x);
+    length += l;
+    c4 += l * std::cos(a);
+    s4 += l * std::sin(a);
   }
+  const double step = length / half;
+  if (!(step > 0.0)) return std::nullopt;
+  const double turn = std::atan2(s4, c4) / 4.0;
+  const Vec2 u{std::cos(turn), std::sin(turn)}, v{-std::sin(turn), std::cos(turn)};
+  double u0 = std::numeric_limits<double>::infinity(), u1 = -u0, v0 = u0, v1 = -u0;
+  for (std::uint32_t k = 0; k < half; ++k) {
+    u0 = std::min(u0, dot(local[k], u));
+    u1 = std::max(u1, dot(local[k], u));
+    v0 = std::min(v0, dot(local[k], v));
+    v1 = std::max(v1, dot(local[k], v));
+  }
+  const auto cells_u = static_cast<std::int64_t>(std::floor((u1 - u0) / step));
+  const auto cells_v = static_cast<std::int64_t>(std::floor((v1 - v0) / step));
+  if (cells_u < 2 || cells_v < 2) return std::nullopt;
+  // Few lattice points for the polygon's size: nothing to gain over split, and the distance
+  // test below is points x edges.
+  if (static_cast<double>(cells_u) * static_cast<double>(cells_v) > kLatticeMaxPoints) return std::nullopt;
+  const double su = u0 + 0.5 * ((u1 - u0) - static_cast<double>(cells_u) * step);
+  const double sv = v0 + 0.5 * ((v1 - v0) - static_cast<double>(cells_v) * step);
+  const double clear2 = (kLatticeClear * step) * (kLatticeClear * step);
+  const std::vector<Vec2> polygon(local.begin(), local.end());
+  for (std::int64_t j = 1; j < cells_v; ++j) {
+    for (std::int64_t i = 1; i < cells_u; ++i) {
+      const double a = su + static_cast<double>(i) * step, b = sv + static_cast<double>(j) * step;
+      const Vec2 p{a * u.x + b * v.x, a * u.y + b * v.y};
+      if (!inside_polygon(p, polygon)) continue;
+      bool clear = true;
+      for (std::uint32_t k = 0; k < half && clear; ++k) {
+        const Vec2 e0 = polygon[k], d = polygon[(k + 1) % half] - e0;
+        const double dd = dot(d, d);
+        const double t = dd > 0.0 ? std::clamp(dot(p - e0, d) / dd, 0.0, 1.0) : 0.0;
+        const Vec2 q = p - (e0 + t * d);
+        clear = dot(q, q) >= clear2;
+      }
+      if (clear) local.push_back(p);
+    }
+  }
+  if (local.size() == half) return std::nullopt;
+  auto tris = constrained_triangulation(local, half);
+  if (tris.empty()) return std::nullopt;
+  std::vector<Vec2> coarse;  // in the patch frame; the polygon's nodes exactly the face's
+  for (std::uint32_t k = 0; k < half; ++k) coarse.push_back(face.cycle[(offset + 2 * k) % n]);
+  for (std::size_t k = half; k < local.size(); ++k) coarse.push_back(frame.to_patch(local[k]));
+  auto mid_at = [&](std::uint32_t i, std::uint32_t j) -> Vec2 {
+    if (i < half && j < half) {
+      if ((i + 1) % half == j) return face.cycle[(offset + 2 * i + 1) % n];
+      if ((j + 1) % half == i) return face.cycle[(offset + 2 * j + 1) % n];
+    }
+    return lerp(coarse[i], coarse[j], 0.5);
+  };
+  auto score = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    const Vec2 ab = mid_at(a, b), bc = mid_at(b, c), ca = mid_at(c, a);
+    const Vec2 g = (1.0 / 6.0) * (coarse[a] + coarse[b] + coarse[c] + ab + bc + ca);
+    return std::min({min_scaled_jacobian(coarse[a], ab, g, ca),
+                     min_scaled_jacobian(coarse[b], bc, g, ab),
+                     min_scaled_jacobian(coarse[c], ca, g, bc)});
+  };
+  improve_by_flips(tris, coarse, score);
+  const std::vector<std::array<std::uint32_t, 4>> merged = merge_coarse_pairs(tris, coarse, mid_at, score);
+  Builder m(face, FillKind::Lattice);
+  std::vector<std::uint32_t> id(coarse.size());
+  for (std::uint32_t k = 0; k < half; ++k) id[k] = (offset + 2 * k) % n;
+  for (std::size_t k = half; k < coarse.size(); ++k) id[k] = m.add(coarse[k]);
+  split_into(m, id, half, offset, tris, merged);
   FaceMesh r = m.finish();
   relax(r, face, 30);
   return r;
@@ -1841,12 +2006,13 @@ template <class Consider>
 std::optional<FaceMesh> pick_unstructured(const FaceInput& face, bool fans, int depth, Consider&& consider) {
   std::optional<FaceMesh> pick;
   double pick_shape = 0.0;
-  for (int k = 0; k < 6; ++k) {
-    if (!fans && (k == 2 || k == 3 || k == 5)) continue;
+  for (int k = 0; k < 8; ++k) {
+    if (!fans && (k == 2 || k == 3 || k >= 5)) continue;
     std::optional<FaceMesh> m = k < 2   ? fill_split(face, static_cast<std::uint32_t>(k))
                                 : k < 4 ? fill_fan_split(face, static_cast<std::uint32_t>(k - 2))
                                 : k < 5 ? fill_cut(face)
-                                        : fill_reflex(face, depth);
+                                : k < 6 ? fill_reflex(face, depth)
+                                        : fill_lattice(face, static_cast<std::uint32_t>(k - 6));
     if (m && m->min_jacobian >= kAcceptJacobian) {
       const double shape = std::floor(mean_shape(*m, face) / kShapeStep);
       if (!pick || shape > pick_shape) {
@@ -1893,10 +2059,17 @@ std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
   }
   for (const Strip& st : strips)
     if (consider(fill_rows(face, st, depth))) return best;
+  bool strip_ok = false;
   for (const Strip& st : strips)
-    if (consider(fill_strip(face, st, depth))) return best;
+    if (consider(fill_strip(face, st, depth))) {
+      strip_ok = true;
+      break;
+    }
+  // A taper may still be a whole kChoiceStep better than an acceptable strip (whose remainder
+  // the lattice template fills well enough to be accepted: 0.35 against the taper's 0.42).
   for (const Strip& st : strips)
-    if (consider(fill_taper(face, st, depth))) return best;
+    if (consider(fill_taper(face, st, depth)) && !strip_ok) return best;
+  if (strip_ok) return best;
   // Read by its corners instead of its sides (a face whose rails bend, or a remainder).
   for (FaceMesh& g : corner_grids(face))
     if (consider(std::move(g))) return best;

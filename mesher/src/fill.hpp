@@ -45,6 +45,7 @@ enum class FillKind : std::uint8_t {
   Taper,    ///< a strip whose caps differ by 4 edges or more: rows narrowing step by step
   Reflex,   ///< a face cut in two at a reflex corner, each piece filled by any template
   Three,    ///< four sides, the two longer ones meeting: three grids round one inner node
+  Lattice,  ///< split with inner coarse nodes on a square lattice: quads of the face's edge size
 };
 const char* to_string(FillKind kind);
 

@@ -2,6 +2,7 @@
 // quads (the cut and pairs templates take what the structured ones cannot), and the faces
 // that once made parts fail.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <random>
@@ -444,5 +445,55 @@ TEST_CASE("an L-shaped face is cut at its reflex corner into pieces that are gri
     check_fill(r.f, m);
     CHECK(m.min_jacobian > 0.55);
     CHECK(tapered_quads(r.f, m) <= 4u);
+  }
+}
+
+TEST_CASE("a large face no structured template fits gets quads of its edge size on a lattice",
+          "[fill][lattice]") {
+  // A five-sided face 20 x 18 edges (the kind of face left where rails were dropped): no
+  // grid, no four corners. Split's coarse triangles span it: 73 quads up to 10.7 edges long,
+  // 59 of them at taper <= 0.8, worst corner 0.15-0.22. The lattice template puts coarse nodes
+  // inside: 261 quads at most 1.57 edges long, 21 tapered, worst 0.67, in every pose.
+  const double scale_of[] = {1.0, 1e-3, 1e3};
+  std::size_t first_count = 0;
+  for (const double turn : {0.0, 2.0}) {
+    for (const double mirror : {1.0, -1.0}) {
+      for (const double scale : scale_of) {
+        CAPTURE(turn, mirror, scale);
+        FaceRuns r;
+        r.ex = scale * Vec2{std::cos(turn), std::sin(turn)};
+        r.ey = scale * mirror * Vec2{-std::sin(turn), std::cos(turn)};
+        using K = FaceSide::Kind;
+        std::vector<std::pair<std::vector<Vec2>, std::vector<int>>> runs = {
+            {{{0, 0}, {20, 0}}, {20}},
+            {{{20, 0}, {20, 12}}, {12}},
+            {{{20, 12}, {10, 18}}, {11}},
+            {{{10, 18}, {0, 12}}, {11}},
+            {{{0, 12}, {0, 0}}, {12}}};
+        if (mirror < 0.0) {  // the same face seen from the other side: its cycle reversed
+          std::reverse(runs.begin(), runs.end());
+          for (auto& [corners, steps] : runs) std::reverse(corners.begin(), corners.end());
+        }
+        for (std::size_t k = 0; k < runs.size(); ++k)
+          r.run(k % 2 == 0 ? K::Boundary : K::Rail, runs[k].first, runs[k].second);
+        REQUIRE(r.f.cycle.size() == 66);
+        const FaceMesh m = fill_face(r.f, "the pentagon");
+        CHECK(std::string(to_string(m.kind)) == "lattice");
+        check_fill(r.f, m);
+        CHECK(m.min_jacobian > 0.55);
+        // Every quad edge at most 2.5 boundary edges long (split's reach across the face).
+        const auto n = static_cast<std::uint32_t>(r.f.cycle.size());
+        auto pos = [&](std::uint32_t i) { return i < n ? r.f.cycle[i] : m.interior[i - n]; };
+        double longest = 0.0;
+        for (const auto& q : m.quads)
+          for (std::size_t k = 0; k < 4; ++k) longest = std::max(longest, distance(pos(q[k]), pos(q[(k + 1) % 4])));
+        CHECK(longest < 2.5 * scale);
+        INFO(tapered_quads(r.f, m) << " of " << m.quads.size() << " quads tapered");
+        CHECK(4 * tapered_quads(r.f, m) <= m.quads.size());
+        // The same quads in every pose.
+        if (first_count == 0) first_count = m.quads.size();
+        CHECK(m.quads.size() == first_count);
+      }
+    }
   }
 }
