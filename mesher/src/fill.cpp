@@ -707,6 +707,36 @@ std::vector<std::array<std::uint32_t, 4>> merge_coarse_pairs(
   return out;
 }
 
+/// Split's coarse mesh: the coarse polygon (face nodes offset, offset + 2, ...), then any
+/// coarse nodes inside it (the lattice template's).
+struct CoarseMesh {
+  const FaceInput& face;
+  std::uint32_t offset, half;
+  std::vector<Vec2> coarse;
+  CoarseMesh(const FaceInput& f, std::uint32_t off)
+      : face(f), offset(off), half(static_cast<std::uint32_t>(f.cycle.size() / 2)) {
+    for (std::uint32_t k = 0; k < half; ++k) coarse.push_back(face.cycle[(offset + 2 * k) % face.cycle.size()]);
+  }
+  /// Where the middle node of coarse edge ij is: the face node between them on the boundary,
+  /// else the midpoint of the diagonal.
+  Vec2 mid_at(std::uint32_t i, std::uint32_t j) const {
+    const std::size_t n = face.cycle.size();
+    if (i < half && j < half) {
+      if ((i + 1) % half == j) return face.cycle[(offset + 2 * i + 1) % n];
+      if ((j + 1) % half == i) return face.cycle[(offset + 2 * j + 1) % n];
+    }
+    return lerp(coarse[i], coarse[j], 0.5);
+  }
+  /// An ear scores the worst of the three quads it will be split into.
+  double score(std::uint32_t a, std::uint32_t b, std::uint32_t c) const {
+    const Vec2 ab = mid_at(a, b), bc = mid_at(b, c), ca = mid_at(c, a);
+    const Vec2 g = (1.0 / 6.0) * (coarse[a] + coarse[b] + coarse[c] + ab + bc + ca);
+    return std::min({min_scaled_jacobian(coarse[a], ab, g, ca),
+                     min_scaled_jacobian(coarse[b], bc, g, ab),
+                     min_scaled_jacobian(coarse[c], ca, g, bc)});
+  }
+};
+
 /// The quads of a split coarse mesh: each coarse quad of `merged` into four through its edge
 /// midpoints and centre, each triangle of `tris` left unmerged into three through its edge
 /// midpoints and centre. Coarse node k is face node id[k]; those below `half` are the
@@ -759,24 +789,11 @@ void split_into(Builder& m, const std::vector<std::uint32_t>& id, std::uint32_t 
 std::optional<FaceMesh> fill_split(const FaceInput& face, std::uint32_t offset) {
   const std::uint32_t n = static_cast<std::uint32_t>(face.cycle.size());
   if (n < 6 || n % 2 != 0) return std::nullopt;
-  std::vector<Vec2> coarse;
-  for (std::uint32_t k = 0; k < n / 2; ++k) coarse.push_back(face.cycle[(offset + 2 * k) % n]);
-  const std::uint32_t half = n / 2;
-  // Where the middle node of coarse edge ij is: the face node between them on the boundary,
-  // else the midpoint of the diagonal.
-  auto mid_at = [&](std::uint32_t i, std::uint32_t j) -> Vec2 {
-    if ((i + 1) % half == j) return face.cycle[(offset + 2 * i + 1) % n];
-    if ((j + 1) % half == i) return face.cycle[(offset + 2 * j + 1) % n];
-    return lerp(coarse[i], coarse[j], 0.5);
-  };
-  // An ear scores the worst of the three quads it will be split into.
-  auto score = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    const Vec2 ab = mid_at(a, b), bc = mid_at(b, c), ca = mid_at(c, a);
-    const Vec2 g = (1.0 / 6.0) * (coarse[a] + coarse[b] + coarse[c] + ab + bc + ca);
-    return std::min({min_scaled_jacobian(coarse[a], ab, g, ca),
-                     min_scaled_jacobian(coarse[b], bc, g, ab),
-                     min_scaled_jacobian(coarse[c], ca, g, bc)});
-  };
+  const CoarseMesh cm(face, offset);
+  const std::vector<Vec2>& coarse = cm.coarse;
+  const std::uint32_t half = cm.half;
+  auto mid_at = [&](std::uint32_t i, std::uint32_t j) { return cm.mid_at(i, j); };
+  auto score = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) { return cm.score(a, b, c); };
   auto tris = triangulate(coarse, score);
   if (tris.empty()) return std::nullopt;
   const std::vector<std::array<std::uint32_t, 4>> merged = merge_coarse_pairs(tris, coarse, mid_at, score);
@@ -909,23 +926,11 @@ std::optional<FaceMesh> fill_lattice(const FaceInput& face, std::uint32_t offset
   if (local.size() == half) return std::nullopt;
   auto tris = constrained_triangulation(local, half);
   if (tris.empty()) return std::nullopt;
-  std::vector<Vec2> coarse;  // in the patch frame; the polygon's nodes exactly the face's
-  for (std::uint32_t k = 0; k < half; ++k) coarse.push_back(face.cycle[(offset + 2 * k) % n]);
-  for (std::size_t k = half; k < local.size(); ++k) coarse.push_back(frame.to_patch(local[k]));
-  auto mid_at = [&](std::uint32_t i, std::uint32_t j) -> Vec2 {
-    if (i < half && j < half) {
-      if ((i + 1) % half == j) return face.cycle[(offset + 2 * i + 1) % n];
-      if ((j + 1) % half == i) return face.cycle[(offset + 2 * j + 1) % n];
-    }
-    return lerp(coarse[i], coarse[j], 0.5);
-  };
-  auto score = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    const Vec2 ab = mid_at(a, b), bc = mid_at(b, c), ca = mid_at(c, a);
-    const Vec2 g = (1.0 / 6.0) * (coarse[a] + coarse[b] + coarse[c] + ab + bc + ca);
-    return std::min({min_scaled_jacobian(coarse[a], ab, g, ca),
-                     min_scaled_jacobian(coarse[b], bc, g, ab),
-                     min_scaled_jacobian(coarse[c], ca, g, bc)});
-  };
+  CoarseMesh cm(face, offset);  // in the patch frame; the polygon's nodes exactly the face's
+  for (std::size_t k = half; k < local.size(); ++k) cm.coarse.push_back(frame.to_patch(local[k]));
+  const std::vector<Vec2>& coarse = cm.coarse;
+  auto mid_at = [&](std::uint32_t i, std::uint32_t j) { return cm.mid_at(i, j); };
+  auto score = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) { return cm.score(a, b, c); };
   improve_by_flips(tris, coarse, score);
   const std::vector<std::array<std::uint32_t, 4>> merged = merge_coarse_pairs(tris, coarse, mid_at, score);
   Builder m(face, FillKind::Lattice);
