@@ -261,6 +261,16 @@ std::vector<Strip> strips_of(const FaceInput& face) {
 /// Grid: caps of b edges each, rails of m edges each; transfinite interpolation between the
 /// four sides, rows of quads from one cap to the other. With a one-node cap2 (a wedge) and an
 /// even b, the last row folds into b / 2 quads round that node.
+/// The arc-length fractions (0 to 1) of the nodes node_of(0 .. count) along their chain.
+template <class NodeOf>
+std::vector<double> arc_fractions(const Builder& m, NodeOf node_of, std::uint32_t count) {
+  std::vector<double> t(count + 1, 0.0);
+  for (std::uint32_t k = 1; k <= count; ++k)
+    t[k] = t[k - 1] + distance(m.pos(node_of(k - 1)), m.pos(node_of(k)));
+  for (double& x : t) x = t[count] > 0.0 ? x / t[count] : 0.0;
+  return t;
+}
+
 std::optional<FaceMesh> fill_grid(const FaceInput& face, const Strip& st) {
   const auto b = static_cast<std::uint32_t>(st.cap1.size() - 1);
   const auto h = static_cast<std::uint32_t>(st.rail1.size() - 1);
@@ -279,13 +289,7 @@ std::optional<FaceMesh> fill_grid(const FaceInput& face, const Strip& st) {
     g(b, j) = st.rail1[j];
     g(0, j) = st.rail2[h - j];
   }
-  auto arc = [&](auto node_of, std::uint32_t count) {
-    std::vector<double> t(count + 1, 0.0);
-    for (std::uint32_t k = 1; k <= count; ++k)
-      t[k] = t[k - 1] + distance(m.pos(node_of(k - 1)), m.pos(node_of(k)));
-    for (double& x : t) x = t[count] > 0.0 ? x / t[count] : 0.0;
-    return t;
-  };
+  auto arc = [&](auto node_of, std::uint32_t count) { return arc_fractions(m, node_of, count); };
   const Vec2 apex = m.pos(st.cap2.front());
   auto top = [&](std::uint32_t i) { return wedge ? apex : m.pos(g(i, h)); };
   const auto u0 = arc([&](std::uint32_t i) { return g(i, 0); }, b);
@@ -334,13 +338,7 @@ void grid_into(Builder& m, const std::vector<std::uint32_t>& s0, const std::vect
     g(b, j) = s1[j];
     g(0, j) = s3[h - j];
   }
-  auto arc = [&](auto node_of, std::uint32_t count) {
-    std::vector<double> t(count + 1, 0.0);
-    for (std::uint32_t k = 1; k <= count; ++k)
-      t[k] = t[k - 1] + distance(m.pos(node_of(k - 1)), m.pos(node_of(k)));
-    for (double& x : t) x = t[count] > 0.0 ? x / t[count] : 0.0;
-    return t;
-  };
+  auto arc = [&](auto node_of, std::uint32_t count) { return arc_fractions(m, node_of, count); };
   const auto u0 = arc([&](std::uint32_t i) { return g(i, 0); }, b);
   const auto u1 = arc([&](std::uint32_t i) { return g(i, h); }, b);
   const auto v0 = arc([&](std::uint32_t j) { return g(0, j); }, h);
