@@ -83,6 +83,11 @@ constexpr double kFootWidthBound = 2.0;
 /// (15 degrees: cgal_complex_1 0.18 -> 0.34 against 10 degrees; taken alone, 10 gave 0.18).
 constexpr double kMinWedgeAngle = 15.0 * kPi / 180.0;
 constexpr double kMaxWedgeFeet = 0.5;
+/// A wedge at an MA point thinner than this goes whatever its feet (session 15): long rails
+/// converging at the axis from far-apart feet (cgal_wiggly_03_cgal's teeth, 1-2 degrees apart)
+/// made wedges whose apex quads were 0.03; the face their dropped rail leaves is wide, and the
+/// lattice template fills such faces with quads of the edge size.
+constexpr double kThinWedgeAngle = 10.0 * kPi / 180.0;
 /// Round fans (drop_narrow_fans): at least kRoundFanRails rails at one MA point, at most
 /// kRoundFanOpenGaps wedges between them not capped by plain boundary; they are thinned to
 /// wedges of at most about kRoundFanAngle (thin_round_fan). Four of the 217 generated parts
@@ -802,10 +807,11 @@ class QuadBuilder {
         std::size_t pick = rails.size();
         for (std::size_t k = 0; k < rails.size(); ++k) {
           const double angle = gap(k);
-          // At an MA point only a wedge whose feet are closer than kMaxWedgeFeet x h: a wider
-          // one holds quads of its own, and merging it made long fans (cgal_wiggly_03_cgal).
-          if (at_ma && distance(dir(rails[k]), dir(rails[(k + 1) % rails.size()])) >
-                           kMaxWedgeFeet * h_)
+          // At an MA point only a wedge whose feet are closer than kMaxWedgeFeet x h, or one
+          // thinner than kThinWedgeAngle: a wider one holds quads of its own, and merging it
+          // made long fans (cgal_wiggly_03_cgal, before the lattice template).
+          if (at_ma && angle >= kThinWedgeAngle &&
+              distance(dir(rails[k]), dir(rails[(k + 1) % rails.size()])) > kMaxWedgeFeet * h_)
             continue;
           // At a reflex corner the wider limit holds for short rails only: dropping a long
           // one takes a long chain, and wide faces far from the corner, with it.

@@ -361,6 +361,23 @@ TEST_CASE("the boundary round a nearly flat corner spreads along the axis", "[me
   check_three_poses(read_brep_json(cases_dir() + "/annulus.json"), 0.95);
 }
 
+TEST_CASE("a wedge at the axis thinner than 10 degrees goes whatever its feet", "[mesh][wedge]") {
+  // cgal_wiggly_03_cgal at twice its density: rails from its teeth, feet far apart, converged
+  // at MA points 1-2 degrees apart, and the grid of each wedge folded into its apex: 0.068,
+  // 2.1% of quads at aspect >= 5. With the thin wedges' rails dropped (kThinWedgeAngle) the
+  // faces they leave are wide and the lattice template fills them: 0.143, 1.4%. In adaptive
+  // mode 0.090 -> 0.182, skew >= 30 27% -> 7.6%.
+  for (const MeshPartResult& r :
+       check_three_poses(finer(cases_dir() + "/external/cgal_wiggly_03_cgal.json", 2.0), 0.12))
+    CHECK(r.quality.measures[1].bad_percent < 1.8);  // aspect >= 5
+  MeshPartOptions o;
+  o.adaptive = true;
+  const MeshPartResult a = mesh_part(load_part(cases_dir() + "/external/cgal_wiggly_03_cgal.json"), o);
+  REQUIRE(a.check.valid());
+  CHECK(a.quality.measures[6].worst > 0.15);
+  CHECK(a.quality.measures[0].bad_percent < 12.0);  // skew >= 30
+}
+
 TEST_CASE("a flat corner's zone goes on along the axis past the other side's corners", "[mesh][flat]") {
   // cover_bosses at a third of its size: a nearly flat corner whose root's own axis edges were
   // too short for its stretch (corners of the other side cut them short) kept its fan of
