@@ -898,8 +898,8 @@ std::optional<FaceMesh> fill_lattice(const FaceInput& face, std::uint32_t offset
   const auto cells_u = static_cast<std::int64_t>(std::floor((u1 - u0) / step));
   const auto cells_v = static_cast<std::int64_t>(std::floor((v1 - v0) / step));
   if (cells_u < 2 || cells_v < 2) return std::nullopt;
-  // Few lattice points for the polygon's size: nothing to gain over split, and the distance
-  // test below is points x edges.
+  // A box of more cells is left to the other templates: the distance test below is points x
+  // edges.
   if (static_cast<double>(cells_u) * static_cast<double>(cells_v) > kLatticeMaxPoints) return std::nullopt;
   const double su = u0 + 0.5 * ((u1 - u0) - static_cast<double>(cells_u) * step);
   const double sv = v0 + 0.5 * ((v1 - v0) - static_cast<double>(cells_v) * step);
