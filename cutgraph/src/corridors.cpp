@@ -129,7 +129,9 @@ class Finder {
 
   /// Joins a CUT-SEG with the CUT-SEGs its points map onto across the medial axis. Several
   /// points are mapped; one that lands on (or within the point tolerance of) a break point or
-  /// a corner is ambiguous, decided by rounding, and is not used. (A CUT-SEG that maps into a
+  /// a corner, or whose axis point is a branch point, is ambiguous, decided by rounding, and
+  /// is not used (holes2__cube_holes, a regular octagon in a square: a point mapped through a
+  /// branch point joined two corridors in one pose and not in another). (A CUT-SEG that maps into a
   /// concave vertex's fan therefore forms its own corridor with that fan.)
   void link_opposite(std::size_t i, UnionFind& uf) const {
     const CutSeg& cs = out_.segs[i];
@@ -142,11 +144,22 @@ class Finder {
       bp.position = point_at(poly, cs.u0 + f * (cs.u1 - cs.u0), &seg, &s);
       bp.site = {BoundarySite::Kind::Segment, cs.loop, seg};
       bp.s = s;
-      const auto q = axes_[cs.patch.index()].opposite(bp);
-      if (!q || q->site.kind == BoundarySite::Kind::Corner) continue;
-      const double u = static_cast<double>(q->site.index) + q->s;
-      if (near_break(cs.patch.value, q->site.loop, u, q->position, tol)) continue;
-      uf.unite(i, seg_at(cs.patch.value, q->site.loop, u));
+      const MedialAxis& axis = axes_[cs.patch.index()];
+      // Through a branch point (or within the point tolerance of one) the other side is any
+      // of its touching points, decided by rounding: not used either.
+      const auto m = axis.project(bp);
+      if (!m || !m->edge.valid()) continue;
+      const MaEdge& me = axis.edge(m->edge);
+      bool at_branch = false;
+      for (const MaVertexId v : {me.a, me.b})
+        at_branch = at_branch || (axis.vertex(v).degree >= 3 &&
+                                  distance(axis.vertex(v).position, m->position) <= tol);
+      if (at_branch) continue;
+      const auto q = axis.touching_point(*m, axis.far_side(*m, bp));
+      if (q.site.kind == BoundarySite::Kind::Corner) continue;
+      const double u = static_cast<double>(q.site.index) + q.s;
+      if (near_break(cs.patch.value, q.site.loop, u, q.position, tol)) continue;
+      uf.unite(i, seg_at(cs.patch.value, q.site.loop, u));
     }
   }
 

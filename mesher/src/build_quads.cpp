@@ -41,7 +41,9 @@ constexpr std::uint32_t kNone = 0xffffffffu;
 /// A boundary piece longer than this x h is split into round(length / h) mesh edges.
 constexpr double kSplitPiece = 2.0;
 /// Lengths are compared with h this much below their exact value (relative), so that a length
-/// of exactly 1.5 h gives the same count in every pose, whatever its rounding.
+/// of exactly 1.5 h gives the same count in every pose, whatever its rounding; the same slack
+/// (x h) on the fan rules' length bounds (a hole's corner exactly kMaxWedgeFeet h from
+/// another's: holes__rect_near_g0.5).
 constexpr double kRoundingSlack = 1e-7;
 /// A G-CUT-VERT within this x the part size of another break of its edge (or of the edge's
 /// end) is that node: ten times above the checker's closest allowed nodes.
@@ -811,17 +813,19 @@ class QuadBuilder {
           // thinner than kThinWedgeAngle: a wider one holds quads of its own, and merging it
           // made long fans (cgal_wiggly_03_cgal, before the lattice template).
           if (at_ma && angle >= kThinWedgeAngle &&
-              distance(dir(rails[k]), dir(rails[(k + 1) % rails.size()])) > kMaxWedgeFeet * h_)
+              distance(dir(rails[k]), dir(rails[(k + 1) % rails.size()])) >
+                  (kMaxWedgeFeet + kRoundingSlack) * h_)
             continue;
           // At a reflex corner the wider limit holds for short rails only: dropping a long
           // one takes a long chain, and wide faces far from the corner, with it.
-          if (reflex && (norm(dir(rails[k])) > kShortFanRail * h_ ||
-                         norm(dir(rails[(k + 1) % rails.size()])) > kShortFanRail * h_) &&
+          if (reflex && (norm(dir(rails[k])) > (kShortFanRail + kRoundingSlack) * h_ ||
+                         norm(dir(rails[(k + 1) % rails.size()])) >
+                             (kShortFanRail + kRoundingSlack) * h_) &&
               angle >= kMinFanAngle)
             continue;
-          if (reflex && pick < rails.size() && std::abs(angle - closest) <= kAngleTie) {
-            // A reflex corner's fan is often regular: of gaps alike (to rounding), the pair
-            // with the least rail segment id, the same in every pose.
+          if (pick < rails.size() && std::abs(angle - closest) <= kAngleTie) {
+            // A fan is often regular (a reflex corner's, a symmetric part's): of gaps alike
+            // (to rounding), the pair with the least rail segment id, the same in every pose.
             if (pair_id(k) < pair_id(pick)) pick = k;
             continue;
           }
@@ -834,7 +838,10 @@ class QuadBuilder {
         const std::size_t other = (pick + 1) % rails.size();
         const double lp = norm(dir(rails[pick])), lo = norm(dir(rails[other]));
         std::size_t gone = lp >= lo ? pick : other;
-        if (reflex && std::abs(lp - lo) <= tol)
+        // Of two rails as long as each other (to rounding) at a boundary node, the one with
+        // the greater segment id goes: a symmetric part's fans lose the same rail in every
+        // pose (holes__hole_tiny lost its mirror image when turned).
+        if (!at_ma && std::abs(lp - lo) <= tol)
           gone = g.edges[rails[pick]].seg > g.edges[rails[other]].seg ? pick : other;
         if (at_ma && std::abs(lp - lo) <= tol && rails.size() >= 3) {
           const double before = gap((pick + rails.size() - 1) % rails.size());
