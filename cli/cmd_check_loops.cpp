@@ -109,9 +109,10 @@ int run_check_loops(const std::vector<std::string>& argv) {
     std::printf("%zu rail chains (%zu loops) through %zu rail points, %s, %.3f s\n",
                 graph.chains.size(), loops, graph.gverts.size(), tracks, seconds);
     std::printf(
-        "%zu corridors, %zu tracks; %zu source rails deleted for narrow corridors, %zu "
-        "narrow corridors kept (small features)\n",
-        graph.corridor_count, graph.track_count, graph.deleted.size(), graph.narrow_kept);
+        "%zu corridors, %zu tracks; %zu source rails deleted for narrow corridors (in %zu "
+        "rounds), %zu narrow corridors kept (small features)\n",
+        graph.corridor_count, graph.track_count, graph.deleted.size(), graph.narrow_rounds,
+        graph.narrow_kept);
     std::printf("chain ends:\n");
     for (const auto& [end, n] : ends) std::printf("  %-15s %zu\n", end.c_str(), n);
     std::printf("largest loop closure gap %.3g (limit %.3g): %s\n", max_gap,

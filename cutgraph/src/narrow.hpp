@@ -8,17 +8,20 @@
 
 namespace laytracks::cutgraph_detail {
 
-/// Deletes source rails, one connected set at a time, until no corridor is narrower than
+/// Deletes source rails, round by round (in each, the narrowest corridor of every region of
+/// patches; narrow.cpp), until no corridor is narrower than
 /// `narrow_fraction` x `track_width(R)` (R: the longest rail bounding it, the radius at its
 /// branch point) except small features (a corridor bounded by a convex corner) and corridors
 /// whose only deletable rail is the last one at a concave vertex (counted in `kept`).
-/// `suppressed` receives the positions of the deleted source points, `deleted` a record each.
+/// `suppressed` receives the positions of the deleted source points, `deleted` a record each,
+/// `rounds` the count of rounds that deleted rails.
 void remove_narrow_corridors(const Part& part,
                              const std::vector<MedialAxis>& axes,
                              const std::function<double(double)>& track_width,
                              double narrow_fraction,
                              std::vector<Vec3>& suppressed,
                              std::vector<DeletedRail>& deleted,
-                             std::size_t& kept);
+                             std::size_t& kept,
+                             std::size_t& rounds);
 
 }  // namespace laytracks::cutgraph_detail

@@ -123,6 +123,8 @@ struct CutGraph {
   /// Narrow corridors left alone: they pass a convex vertex (a small feature that needs its
   /// fine tracks) or their only rail ends at a concave vertex.
   std::size_t narrow_kept = 0;
+  /// Rounds of narrow-corridor removal that deleted rails (each lays the source rails again).
+  std::size_t narrow_rounds = 0;
   std::size_t corridor_count = 0;  ///< corridors between the source rails (after deletions)
   std::size_t track_count = 0;     ///< tracks, once the track rails are laid
 };
