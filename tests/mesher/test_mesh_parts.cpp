@@ -528,3 +528,18 @@ TEST_CASE("ties at the rules' bounds and in symmetric parts are read alike in ev
     }
   }
 }
+
+TEST_CASE("a faceted shell's rails from neighbouring facets do not run side by side",
+          "[mesh][faceted]") {
+  // An icosphere of 1280 triangles at size 2.5 (three elements a side): rails laid from
+  // neighbouring facets ran 0.12 element sizes apart across many facets, strips of quads of
+  // aspect 8 (9.3% at aspect >= 5, worst corner 0.38). Within kCoincideRel = 0.15 x its
+  // radius a rail lands on the other chain's point.
+  RawPart raw = icosphere(3, 50.0);
+  raw.mesh.size = 2.5;
+  const MeshPartResult r = mesh_part(build_part(raw));
+  REQUIRE(r.check.valid());
+  CHECK(r.rail_merges > 0);
+  CHECK(r.quality.measures[1].bad_percent < 3.0);  // aspect >= 5
+  CHECK(r.quality.measures[6].worst > 0.44);
+}

@@ -1,8 +1,11 @@
 #include "test_support.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <string>
 
 #include "laytracks/brep/build.hpp"
 #include "laytracks/io/brep_json.hpp"
@@ -95,6 +98,40 @@ RawPart transformed(const RawPart& raw, const Transform& t) {
                                      t.m[0][2] * (t.m[1][0] * t.m[2][1] - t.m[1][1] * t.m[2][0])));
   if (out.mesh.size) out.mesh.size = *out.mesh.size * scale;
   return out;
+}
+
+RawPart icosphere(int level, double r) {
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  std::vector<Vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  for (Vec3& p : v) p = (r / norm(p)) * p;
+  std::vector<std::array<std::size_t, 3>> f = {
+      {0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+      {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+      {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+  for (int l = 0; l < level; ++l) {
+    std::map<std::pair<std::size_t, std::size_t>, std::size_t> mid;
+    const auto middle = [&](std::size_t a, std::size_t b) {
+      const auto key = std::minmax(a, b);
+      const auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      const Vec3 m = 0.5 * (v[a] + v[b]);
+      v.push_back((r / norm(m)) * m);
+      return mid[key] = v.size() - 1;
+    };
+    std::vector<std::array<std::size_t, 3>> g;
+    for (const auto& [a, b, c] : f) {
+      const std::size_t ab = middle(a, b), bc = middle(b, c), ca = middle(c, a);
+      g.insert(g.end(), {{a, ab, ca}, {b, bc, ab}, {c, ca, bc}, {ab, bc, ca}});
+    }
+    f = std::move(g);
+  }
+  RawPart raw;
+  raw.vertices = v;
+  const auto id = [](std::size_t k) { return static_cast<std::int64_t>(k); };
+  for (std::size_t i = 0; i < f.size(); ++i)
+    raw.patches.push_back({"f" + std::to_string(i), {{id(f[i][0]), id(f[i][1]), id(f[i][2])}}});
+  return raw;
 }
 
 }  // namespace laytracks::test

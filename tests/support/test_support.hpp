@@ -35,4 +35,8 @@ Transform translation(Vec3 t);
 Transform compose(const Transform& second, const Transform& first);  ///< second after first
 RawPart transformed(const RawPart& raw, const Transform& t);
 
+/// A faceted closed shell: 20 x 4^level triangles on a sphere of radius r (the icosahedron's
+/// faces split into four, level times, the new vertices pushed out to the sphere).
+RawPart icosphere(int level, double r);
+
 }  // namespace laytracks::test
