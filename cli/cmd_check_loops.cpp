@@ -93,6 +93,7 @@ int run_check_loops(const std::vector<std::string>& argv) {
   doc["corridors"] = graph.corridor_count;
   doc["tracks"] = graph.track_count;
   doc["deleted_rails"] = graph.deleted.size();
+  doc["narrow_rounds"] = graph.narrow_rounds;
   doc["narrow_corridors_kept"] = graph.narrow_kept;
   doc["problems"] = problems;
   if (const auto path = args.value("--json")) {

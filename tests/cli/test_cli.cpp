@@ -131,6 +131,17 @@ TEST_CASE("check-loops reports the cube's loops as JSON, and draw writes picture
   std::size_t loops = 0;
   for (const auto& rail : doc["rails"]) loops += rail["end"] == "loop" ? 1u : 0u;
   CHECK(loops == 32);
+  CHECK(doc["deleted_rails"] == 0);
+  CHECK(doc["narrow_rounds"] == 0);
+  // A part with narrow corridors: the rails deleted and the rounds that deleted them.
+  const Run narrow = run("check-loops " + q(laytracks::test::cases_dir() +
+                                            "/external/cgal_complex_1.json") +
+                         " --json " + q(d / "narrow.json"));
+  REQUIRE(narrow.status == 0);
+  const auto nd = nlohmann::json::parse(slurp(d / "narrow.json"));
+  CHECK(nd["narrow_rounds"].get<int>() > 0);
+  CHECK(nd["narrow_rounds"].get<int>() <= nd["deleted_rails"].get<int>());
+  CHECK_THAT(narrow.out, Catch::Contains("rounds)"));
   for (const char* stage : {"medial", "corridors", "tracks"}) {
     const fs::path svg = d / (std::string(stage) + ".svg");
     const Run draw = run("draw " + cube + " --stage " + stage + " -o " + q(svg));
