@@ -214,7 +214,8 @@ void remove_narrow_corridors(const Part& part,
         const auto it = set_patches.find(uf.find(src));
         if (it != set_patches.end()) region.insert(it->second.begin(), it->second.end());
       }
-      const bool waits = std::any_of(region.begin(), region.end(), [&](std::uint32_t p) { return claimed[p]; });
+      const bool waits =
+          std::any_of(region.begin(), region.end(), [&](std::uint32_t p) { return claimed[p]; });
       claim(region);
       if (waits) continue;  // a narrower corridor of the round is near: the next round
       for (std::uint32_t src : best) {

@@ -209,7 +209,7 @@ class QuadBuilder {
     }
     fix_parity();
     materialise_pieces();
-    for (std::size_t p = 0; p < part_.patches.size(); ++p) fill_patch(PatchId(p));
+    fill_patches();
     return std::move(result_);
   }
 
@@ -1204,7 +1204,65 @@ class QuadBuilder {
     }
   }
 
-  void fill_patch(PatchId pid) {
+  /// A face's cycle: its positions and sides (FaceInput), and its nodes' mesh ids.
+  struct Pending {
+    FaceInput in;
+    std::vector<std::uint32_t> mesh_ids;
+    std::string where;
+  };
+
+  /// Fills every face of every patch. A patch's MA and rail nodes are made first, patch by
+  /// patch; then the faces of all the patches are filled on all cores (a face's fill reads
+  /// only its own input; a shell of many small patches, each with few faces, keeps the cores
+  /// busy: an icosphere of 1280 triangles, quads stage 0.56 -> 0.26 s); then each patch's
+  /// inner nodes and quads are added in patch and face order, and the nodes are numbered as if
+  /// each patch had been filled in turn (its rail nodes, then its faces' inner nodes), so the
+  /// mesh is the same as filled one by one.
+  void fill_patches() {
+    const std::size_t np = part_.patches.size();
+    std::vector<std::vector<Pending>> pending(np);
+    std::vector<std::size_t> rails_from(np), rails_to(np);
+    for (std::size_t p = 0; p < np; ++p) {
+      rails_from[p] = result_.mesh.nodes.size();
+      pending[p] = prepare_patch(PatchId(p));
+      rails_to[p] = result_.mesh.nodes.size();
+    }
+    std::vector<std::pair<std::size_t, std::size_t>> jobs;  // (patch, face)
+    std::vector<std::vector<FaceMesh>> filled(np);
+    for (std::size_t p = 0; p < np; ++p) {
+      filled[p].resize(pending[p].size());
+      for (std::size_t f = 0; f < pending[p].size(); ++f) jobs.emplace_back(p, f);
+    }
+    parallel_for(jobs.size(), [&](std::size_t j) {
+      const auto [p, f] = jobs[j];
+      filled[p][f] = fill_face(pending[p][f].in, pending[p][f].where);
+    });
+    std::vector<std::size_t> inner_from(np), inner_to(np);
+    for (std::size_t p = 0; p < np; ++p) {
+      inner_from[p] = result_.mesh.nodes.size();
+      emit_patch(PatchId(p), pending[p], filled[p]);
+      inner_to[p] = result_.mesh.nodes.size();
+    }
+    // Renumber: the nodes before the first patch's rails stay; then per patch its rail nodes
+    // and its inner nodes.
+    std::vector<std::uint32_t> order(result_.mesh.nodes.size());
+    std::size_t next = np > 0 ? rails_from[0] : result_.mesh.nodes.size();
+    for (std::size_t v = 0; v < next; ++v) order[v] = static_cast<std::uint32_t>(v);
+    const auto take = [&](std::size_t from, std::size_t to) {
+      for (std::size_t v = from; v < to; ++v) order[v] = static_cast<std::uint32_t>(next++);
+    };
+    for (std::size_t p = 0; p < np; ++p) {
+      take(rails_from[p], rails_to[p]);
+      take(inner_from[p], inner_to[p]);
+    }
+    std::vector<Vec3> nodes(result_.mesh.nodes.size());
+    for (std::size_t v = 0; v < nodes.size(); ++v) nodes[order[v]] = result_.mesh.nodes[v];
+    result_.mesh.nodes = std::move(nodes);
+    for (MeshElement& e : result_.mesh.elements)
+      for (std::uint32_t& v : e.nodes) v = order[v];
+  }
+
+  std::vector<Pending> prepare_patch(PatchId pid) {
     const Patch& patch = part_.patches[pid.index()];
     PatchGraph& g = patches_[pid.index()];
     // MA nodes and rail nodes.
@@ -1235,12 +1293,6 @@ class QuadBuilder {
                              : lerp(g.nodes[c.a].p, g.nodes[c.b].p, c.forward ? s : 1.0 - s);
       }
     }
-    // Each face's cycle: its positions and sides (FaceInput), and its nodes' mesh ids.
-    struct Pending {
-      FaceInput in;
-      std::vector<std::uint32_t> mesh_ids;
-      std::string where;
-    };
     std::vector<Pending> pending(g.faces.size());
     for (std::size_t f = 0; f < g.faces.size(); ++f) {
       auto cycle = g.faces[f];
@@ -1298,11 +1350,12 @@ class QuadBuilder {
             << ", " << x.z << ")";
       pending[f].where = where.str();
     }
-    // The faces are filled on all cores (a face's fill reads only its own input); their nodes
-    // and quads are added in face order, so the mesh is the same as filled one by one.
-    std::vector<FaceMesh> filled(pending.size());
-    parallel_for(pending.size(),
-                 [&](std::size_t f) { filled[f] = fill_face(pending[f].in, pending[f].where); });
+    return pending;
+  }
+
+  /// A patch's faces, filled: their inner nodes and quads, in face order.
+  void emit_patch(PatchId pid, std::vector<Pending>& pending, const std::vector<FaceMesh>& filled) {
+    const Patch& patch = part_.patches[pid.index()];
     for (std::size_t f = 0; f < pending.size(); ++f) {
       const FaceMesh& fm = filled[f];
       ++result_.stats.faces;
