@@ -543,3 +543,31 @@ TEST_CASE("a faceted shell's rails from neighbouring facets do not run side by s
   CHECK(r.quality.measures[1].bad_percent < 3.0);  // aspect >= 5
   CHECK(r.quality.measures[6].worst > 0.44);
 }
+
+TEST_CASE("the mesh is the same on one core and on several", "[mesh][determinism]") {
+  // Faces (of all patches at once), cavity re-fills and smoothing run on all cores; every
+  // result is gathered in a fixed order, so the node and element arrays must not depend on
+  // how many threads there are. A shell of many patches (an icosphere of 320 triangles) and
+  // the ribbed tray.
+  RawPart sphere = icosphere(2, 50.0);
+  sphere.mesh.size = 2.5;
+  for (const Part& part : {build_part(sphere), load_part(samples_dir() + "/tray_ribs.json")}) {
+    set_mesher_threads(1);
+    const MeshPartResult one = mesh_part(part);
+    set_mesher_threads(3);
+    const MeshPartResult three = mesh_part(part);
+    set_mesher_threads(0);
+    REQUIRE(one.check.valid());
+    CHECK(one.mesh.nodes.size() == three.mesh.nodes.size());
+    CHECK(one.mesh.elements.size() == three.mesh.elements.size());
+    bool same = one.mesh.nodes.size() == three.mesh.nodes.size() &&
+                one.mesh.elements.size() == three.mesh.elements.size();
+    for (std::size_t v = 0; same && v < one.mesh.nodes.size(); ++v)
+      same = one.mesh.nodes[v].x == three.mesh.nodes[v].x &&
+             one.mesh.nodes[v].y == three.mesh.nodes[v].y &&
+             one.mesh.nodes[v].z == three.mesh.nodes[v].z;
+    for (std::size_t e = 0; same && e < one.mesh.elements.size(); ++e)
+      same = one.mesh.elements[e].nodes == three.mesh.elements[e].nodes;
+    CHECK(same);
+  }
+}
