@@ -70,6 +70,7 @@ class RailLayer {
       for (MaVertexId v : axes_[p].branch_points()) {
         for (const BoundaryPoint& bp : axes_[p].touching_points(v)) {
           if (is_suppressed(part_.patches[p].frame.to_3d(bp.position))) continue;
+          if (join_source(pid, v, bp)) continue;
           const GCutId g = gcut_of(pid, bp, nullptr);
           g_.gverts[g.index()].source = true;
           set_root(g, g);
@@ -399,6 +400,40 @@ class RailLayer {
     return gv.t;
   }
   double registry_tolerance() const { return kSamePointRel * part_.size; }
+
+  /// Joined sources (docs/cutgraph.md, "Coincident rails"): a touching point of branch point v
+  /// of patch p on a shared edge, within the coincide limit of the touching point of an earlier
+  /// patch's branch point on that edge, is not a source of its own: the rail from v leans to
+  /// that point, and the two branch points are joined by one rail chain. (On a shell of
+  /// irregular triangles each shared edge holds both facets' incircle touching points a few
+  /// hundredths of an element apart; each pair made two chains side by side and a sliver
+  /// between them.) Sources are registered patch by patch before any rail is laid, so the
+  /// earlier patch is the lower index, the same in every pose. True when joined.
+  bool join_source(PatchId p, MaVertexId v, const BoundaryPoint& bp) {
+    if (bp.site.kind == BoundarySite::Kind::Corner) return false;
+    const EdgeId e = index_.edge_at(p, bp.site.loop, bp.site.index);
+    if (part_.edges[e.index()].patches.size() < 2) return false;
+    const double t = index_.edge_param(p, bp.site.loop, bp.site.index, bp.s);
+    const MedialAxis& ma = axes_[p.index()];
+    double d = 0.0;
+    const GCutId near = registry_.nearest_if(
+        e, t, [&](GCutId x) { return !g_.gverts[x.index()].vertex && !cut_of(x, p); }, &d);
+    if (!near.valid() || d <= registry_tolerance() || d > coincide_limit(ma.vertex(v).radius))
+      return false;
+    const CutVertId c = make_cut(near, p, image_in(near, p, bp.site.loop, bp.site.index));
+    MaPoint m;
+    m.edge = ma.incident(v).front();
+    m.t = ma.edge(m.edge).a == v ? 0.0 : 1.0;
+    m.position = ma.vertex(v).position;
+    m.radius = ma.vertex(v).radius;
+    const MaCutId mc = make_macut(p, m);
+    g_.segments.push_back({c, mc, true});
+    links_.push_back({near.value, node_of(mc), p, d});
+    const double x = param_on(near, e);
+    leans_[e.value].push_back({std::min(x, t), std::max(x, t), near});
+    ++g_.rail_merges;
+    return true;
+  }
 
   /// How close to another chain's point a rail landing at medial radius r lands on it.
   double coincide_limit(double r) const {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -100,7 +101,7 @@ RawPart transformed(const RawPart& raw, const Transform& t) {
   return out;
 }
 
-RawPart icosphere(int level, double r) {
+RawPart icosphere(int level, double r, double jitter) {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
   std::vector<Vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
                          {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
@@ -125,6 +126,12 @@ RawPart icosphere(int level, double r) {
       g.insert(g.end(), {{a, ab, ca}, {b, bc, ab}, {c, ca, bc}, {ab, bc, ca}});
     }
     f = std::move(g);
+  }
+  std::uint32_t state = 12345u;  // a linear congruential sequence: the same on every platform
+  for (Vec3& p : v) {
+    state = state * 1664525u + 1013904223u;
+    const double u = static_cast<double>(state >> 8) / static_cast<double>(1u << 24);  // [0, 1)
+    if (jitter > 0.0) p = (1.0 + jitter * (u - 0.5)) * p;
   }
   RawPart raw;
   raw.vertices = v;

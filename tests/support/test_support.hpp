@@ -36,7 +36,9 @@ Transform compose(const Transform& second, const Transform& first);  ///< second
 RawPart transformed(const RawPart& raw, const Transform& t);
 
 /// A faceted closed shell: 20 x 4^level triangles on a sphere of radius r (the icosahedron's
-/// faces split into four, level times, the new vertices pushed out to the sphere).
-RawPart icosphere(int level, double r);
+/// faces split into four, level times, the new vertices pushed out to the sphere). With
+/// jitter > 0 each vertex is then moved out or in by up to jitter / 2 x r (a fixed
+/// pseudo-random sequence): irregular triangles, as a tessellated part has.
+RawPart icosphere(int level, double r, double jitter = 0.0);
 
 }  // namespace laytracks::test
