@@ -80,13 +80,7 @@ class RailLayer {
             const LoopPoint at{corner->loop, corner->index, 0.0};
             const std::optional<CutVertId> known = cut_of(g, pid);
             const CutVertId c = known ? *known : make_cut(g, pid, at);
-            MaPoint m;
-            const MedialAxis& ma = axes_[p];
-            m.edge = ma.incident(v).front();
-            m.t = ma.edge(m.edge).a == v ? 0.0 : 1.0;
-            m.position = ma.vertex(v).position;
-            m.radius = ma.vertex(v).radius;
-            const MaCutId mc = make_macut(pid, m);
+            const MaCutId mc = make_macut(pid, vertex_point(axes_[p], v));
             g_.segments.push_back({c, mc});
             links_.push_back({g.value, node_of(mc), pid, 0.0});
           }
@@ -421,18 +415,23 @@ class RailLayer {
     if (!near.valid() || d <= registry_tolerance() || d > coincide_limit(ma.vertex(v).radius))
       return false;
     const CutVertId c = make_cut(near, p, image_in(near, p, bp.site.loop, bp.site.index));
-    MaPoint m;
-    m.edge = ma.incident(v).front();
-    m.t = ma.edge(m.edge).a == v ? 0.0 : 1.0;
-    m.position = ma.vertex(v).position;
-    m.radius = ma.vertex(v).radius;
-    const MaCutId mc = make_macut(p, m);
+    const MaCutId mc = make_macut(p, vertex_point(ma, v));
     g_.segments.push_back({c, mc, true});
     links_.push_back({near.value, node_of(mc), p, d});
     const double x = param_on(near, e);
     leans_[e.value].push_back({std::min(x, t), std::max(x, t), near});
     ++g_.rail_merges;
     return true;
+  }
+
+  /// Axis vertex v as a point on its first edge.
+  static MaPoint vertex_point(const MedialAxis& ma, MaVertexId v) {
+    MaPoint m;
+    m.edge = ma.incident(v).front();
+    m.t = ma.edge(m.edge).a == v ? 0.0 : 1.0;
+    m.position = ma.vertex(v).position;
+    m.radius = ma.vertex(v).radius;
+    return m;
   }
 
   /// How close to another chain's point a rail landing at medial radius r lands on it.
