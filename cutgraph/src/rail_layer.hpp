@@ -253,7 +253,7 @@ class RailLayer {
       }
       // Closures and merges only where the chain goes on (a shared edge): on a free edge it
       // ends, and narrow corridors there are removed as usual.
-      const bool shared = part_.edges[te.index()].patches.size() >= 2;
+      const bool shared = is_shared(te);
       if (!g2.valid() && shared && root.valid()) {
         double d = 0.0;
         const GCutId own = registry_.nearest_if(
@@ -273,19 +273,10 @@ class RailLayer {
         }
       }
       if (!g2.valid() && shared) {
-        double d = 0.0;
-        const GCutId near = registry_.nearest_if(
-            te, tt, [&](GCutId x) { return !g_.gverts[x.index()].vertex; }, &d);
-        if (near.valid() && d > registry_tolerance() && d <= coincide_limit(m->radius)) {
-          g2 = near;
-          gap = d;
-          ++g_.rail_merges;
-        }
+        g2 = coincident(te, tt, m->radius, [](GCutId) { return true; }, &gap);
+        if (g2.valid()) ++g_.rail_merges;
       }
-      if (g2.valid()) {
-        const double x = param_on(g2, te);
-        leans_[te.value].push_back({std::min(x, tt), std::max(x, tt), g2});
-      }
+      if (g2.valid()) add_lean(te, tt, g2);
     }
     const bool leans = g2.valid();
     if (!leans) {
@@ -406,20 +397,18 @@ class RailLayer {
   bool join_source(PatchId p, MaVertexId v, const BoundaryPoint& bp) {
     if (bp.site.kind == BoundarySite::Kind::Corner) return false;
     const EdgeId e = index_.edge_at(p, bp.site.loop, bp.site.index);
-    if (part_.edges[e.index()].patches.size() < 2) return false;
+    if (!is_shared(e)) return false;
     const double t = index_.edge_param(p, bp.site.loop, bp.site.index, bp.s);
     const MedialAxis& ma = axes_[p.index()];
     double d = 0.0;
-    const GCutId near = registry_.nearest_if(
-        e, t, [&](GCutId x) { return !g_.gverts[x.index()].vertex && !cut_of(x, p); }, &d);
-    if (!near.valid() || d <= registry_tolerance() || d > coincide_limit(ma.vertex(v).radius))
-      return false;
+    const GCutId near =
+        coincident(e, t, ma.vertex(v).radius, [&](GCutId x) { return !cut_of(x, p); }, &d);
+    if (!near.valid()) return false;
     const CutVertId c = make_cut(near, p, image_in(near, p, bp.site.loop, bp.site.index));
     const MaCutId mc = make_macut(p, vertex_point(ma, v));
     g_.segments.push_back({c, mc, true});
     links_.push_back({near.value, node_of(mc), p, d});
-    const double x = param_on(near, e);
-    leans_[e.value].push_back({std::min(x, t), std::max(x, t), near});
+    add_lean(e, t, near);
     ++g_.rail_merges;
     return true;
   }
@@ -432,6 +421,25 @@ class RailLayer {
     m.position = ma.vertex(v).position;
     m.radius = ma.vertex(v).radius;
     return m;
+  }
+
+  bool is_shared(EdgeId e) const { return part_.edges[e.index()].patches.size() >= 2; }
+
+  /// The coincide rule, for landings and joined sources: the nearest accepted point inside
+  /// edge e (not at a vertex) to parameter t, if it lies beyond the point tolerance and within
+  /// the coincide limit for medial radius r (its distance in *d); else invalid.
+  GCutId coincident(EdgeId e, double t, double r, const std::function<bool(GCutId)>& accept,
+                    double* d) const {
+    const GCutId near = registry_.nearest_if(
+        e, t, [&](GCutId x) { return !g_.gverts[x.index()].vertex && accept(x); }, d);
+    if (near.valid() && *d > registry_tolerance() && *d <= coincide_limit(r)) return near;
+    return {};
+  }
+
+  /// Records that a rail aimed at parameter t of edge e landed on point g instead.
+  void add_lean(EdgeId e, double t, GCutId g) {
+    const double x = param_on(g, e);
+    leans_[e.value].push_back({std::min(x, t), std::max(x, t), g});
   }
 
   /// How close to another chain's point a rail landing at medial radius r lands on it.

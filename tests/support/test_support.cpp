@@ -127,11 +127,13 @@ RawPart icosphere(int level, double r, double jitter) {
     }
     f = std::move(g);
   }
-  std::uint32_t state = 12345u;  // a linear congruential sequence: the same on every platform
-  for (Vec3& p : v) {
-    state = state * 1664525u + 1013904223u;
-    const double u = static_cast<double>(state >> 8) / static_cast<double>(1u << 24);  // [0, 1)
-    if (jitter > 0.0) p = (1.0 + jitter * (u - 0.5)) * p;
+  if (jitter > 0.0) {
+    std::uint32_t state = 12345u;  // a linear congruential sequence: the same on every platform
+    for (Vec3& p : v) {
+      state = state * 1664525u + 1013904223u;
+      const double u = static_cast<double>(state >> 8) / static_cast<double>(1u << 24);  // [0, 1)
+      p = (1.0 + jitter * (u - 0.5)) * p;
+    }
   }
   RawPart raw;
   raw.vertices = v;
