@@ -52,6 +52,7 @@ void remove_narrow_corridors(const Part& part,
                              const std::vector<MedialAxis>& axes,
                              const std::function<double(double)>& track_width,
                              double narrow_fraction,
+                             bool one_per_round,
                              std::vector<Vec3>& suppressed,
                              std::vector<DeletedRail>& deleted,
                              std::size_t& kept,
@@ -65,13 +66,15 @@ void remove_narrow_corridors(const Part& part,
         if (a != b) neighbours[a.index()].push_back(b.value);
   // Each round deletes rails (connected sets of source rails), then lays again: the narrowest
   // corridors first, so that a group of adjacent narrow corridors merges until the width
-  // holds. A round deletes for every narrow corridor that is the narrowest of its region: the
-  // patches of its pieces and of the rails it would delete, none of them in or beside the
-  // region of a narrower corridor of the round (deleted or waiting). Deletions that far apart
-  // change none of each other's corridors, so the rounds are as one deletion per round would
-  // have them, with far fewer rounds on a shell of many patches (an icosphere of 1280
-  // triangles, before kCoincideRel was raised: 41 deletions in 3 rounds, not 41). Bounded by
-  // the number of source points.
+  // holds. A round deletes for every narrow corridor, narrowest first, whose deletion is far
+  // from that of each narrower corridor of the round (deleted or waiting) in one of two ways:
+  // by patches (its region, the patches of its pieces and of the rails it would delete, meets
+  // neither the other's region nor a patch beside it), or by corridors (none of the corridors
+  // it merges is one the other merges or one beside those, sharing a rail set with them).
+  // Deletions that far apart change none of each other's corridors, so the rounds delete what
+  // one deletion per round would (tested against `one_per_round`), in far fewer rounds: an
+  // icosphere of 1280 triangles needs the first (17 rounds; 135 by corridors alone), a torus
+  // of 24 x 12 quads, whose rails run round it, the second (2 rounds; 48 by patches alone). Bounded by the number of source points.
   for (std::size_t round = 0; round < 100000; ++round) {
     const Round r = lay_round(part, axes, track_width, suppressed);
     const CutGraph& g = r.graph;
@@ -148,20 +151,29 @@ void remove_narrow_corridors(const Part& part,
     std::sort(order.begin(), order.end());
     std::vector<std::pair<double, std::size_t>> narrow;
     for (const auto& [q, corridor] : order) narrow.push_back({width[corridor], corridor});
-    // Patches per corridor and per rail set; the patches the round has claimed.
+    // Patches per corridor and per rail set; the corridors each rail set bounds.
     std::map<std::size_t, std::set<std::uint32_t>> corridor_patches;
     for (const CorridorPiece& c : r.pieces) corridor_patches[c.corridor].insert(c.patch.value);
     std::map<std::size_t, std::set<std::uint32_t>> set_patches;
     for (const auto& l : r.links)
       for (std::uint32_t end : {l.from, l.to})
         if (!(end & kMaNodeFlag)) set_patches[uf.find(end)].insert(l.patch.value);
-    std::vector<bool> claimed(part.patches.size(), false);
-    const auto claim = [&](const std::set<std::uint32_t>& region) {
-      for (std::uint32_t p : region) {
-        claimed[p] = true;
-        for (std::uint32_t q : neighbours[p]) claimed[q] = true;
-      }
+    std::map<std::size_t, std::set<std::size_t>> corridors_of_set;
+    for (const auto& [corridor, gs] : bounds)
+      for (std::uint32_t b : gs) corridors_of_set[uf.find(b)].insert(corridor);
+    const auto sets_of = [&](std::size_t corridor) {
+      std::set<std::size_t> sets;
+      const auto it = bounds.find(corridor);
+      if (it != bounds.end())
+        for (std::uint32_t b : it->second) sets.insert(uf.find(b));
+      return sets;
     };
+    // What each deletion of the round (made, or waiting for the next round) claims.
+    struct Claim {
+      std::vector<bool> patches;    // its region and the patches beside it
+      std::set<std::size_t> near;   // the corridors it merges and those beside them
+    };
+    std::vector<Claim> claims;
     bool removed = false;
     kept = 0;
     for (const auto& [w, corridor] : narrow) {
@@ -187,6 +199,7 @@ void remove_narrow_corridors(const Part& part,
       // not depend on how the axis happened to be numbered, so the choice is the same in every
       // pose.
       std::vector<std::uint32_t> best;
+      std::vector<std::size_t> best_sets;
       LoopKey best_key{};
       for (const auto& [unit, sets] : units) {
         std::vector<std::uint32_t> srcs;
@@ -202,6 +215,7 @@ void remove_narrow_corridors(const Part& part,
         if (best.empty() || srcs.size() < best.size() ||
             (srcs.size() == best.size() && unit_key < best_key)) {
           best = srcs;
+          best_sets = sets;
           best_key = unit_key;
         }
       }
@@ -209,14 +223,34 @@ void remove_narrow_corridors(const Part& part,
         ++kept;
         continue;
       }
+      // Its region: the patches of its CUT-SEGs and of the rails it deletes.
       std::set<std::uint32_t> region = corridor_patches[corridor];
       for (std::uint32_t src : best) {
         const auto it = set_patches.find(uf.find(src));
         if (it != set_patches.end()) region.insert(it->second.begin(), it->second.end());
       }
-      const bool waits =
-          std::any_of(region.begin(), region.end(), [&](std::uint32_t p) { return claimed[p]; });
-      claim(region);
+      // The corridors it merges: this one and those across the deleted rails.
+      std::set<std::size_t> touched{corridor};
+      for (std::size_t set : best_sets)
+        touched.insert(corridors_of_set[set].begin(), corridors_of_set[set].end());
+      // Far enough from every claim of the round by patches or by corridors.
+      const bool waits = (one_per_round && removed) ||
+                         std::any_of(claims.begin(), claims.end(), [&](const Claim& c) {
+                           const bool by_patches = std::any_of(
+                               region.begin(), region.end(), [&](std::uint32_t p) { return c.patches[p]; });
+                           const bool by_corridors = std::any_of(
+                               touched.begin(), touched.end(), [&](std::size_t k) { return c.near.count(k) > 0; });
+                           return by_patches && by_corridors;
+                         });
+      Claim claim{std::vector<bool>(part.patches.size(), false), touched};
+      for (std::uint32_t p : region) {
+        claim.patches[p] = true;
+        for (std::uint32_t q : neighbours[p]) claim.patches[q] = true;
+      }
+      for (std::size_t c : touched)
+        for (std::size_t set : sets_of(c))
+          claim.near.insert(corridors_of_set[set].begin(), corridors_of_set[set].end());
+      claims.push_back(std::move(claim));
       if (waits) continue;  // a narrower corridor of the round is near: the next round
       for (std::uint32_t src : best) {
         const GCutVert& gv = g.gverts[src];
@@ -234,6 +268,8 @@ void remove_narrow_corridors(const Part& part,
         }
         deleted.push_back(d);
       }
+      for (std::uint32_t src : best)
+        if (g.gverts[src].vertex) --rays_at_vertex[g.gverts[src].vertex->value];
       removed = true;
     }
     if (!removed) return;

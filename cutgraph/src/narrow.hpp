@@ -8,8 +8,9 @@
 
 namespace laytracks::cutgraph_detail {
 
-/// Deletes source rails, round by round (in each, the narrowest corridor of every region of
-/// patches; narrow.cpp), until no corridor is narrower than
+/// Deletes source rails, round by round (in each, for every narrow corridor whose deletion is
+/// far from every narrower one's, by patches or by corridors; with `one_per_round`, for the
+/// narrowest only: the reference the rounds must agree with; narrow.cpp), until no corridor is narrower than
 /// `narrow_fraction` x `track_width(R)` (R: the longest rail bounding it, the radius at its
 /// branch point) except small features (a corridor bounded by a convex corner) and corridors
 /// whose only deletable rail is the last one at a concave vertex (counted in `kept`).
@@ -19,6 +20,7 @@ void remove_narrow_corridors(const Part& part,
                              const std::vector<MedialAxis>& axes,
                              const std::function<double(double)>& track_width,
                              double narrow_fraction,
+                             bool one_per_round,
                              std::vector<Vec3>& suppressed,
                              std::vector<DeletedRail>& deleted,
                              std::size_t& kept,

@@ -1,4 +1,5 @@
 // Rails across patches (Algorithm II), corridors and track rails, on the test parts.
+#include <array>
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -244,6 +245,43 @@ TEST_CASE("far-apart narrow corridors lose their rails in one round", "[cutgraph
   o.narrow_fraction = 0.0;
   CHECK(g.corridor_count == build_cut_graph(part, axes, o).corridor_count - 5);
   CHECK(validate_cut_graph(part, axes, g).empty());
+}
+
+TEST_CASE("narrow-corridor rounds delete what one deletion per round deletes, in far fewer "
+          "rounds", "[cutgraph][narrow]") {
+  // A torus of 24 x 12 quads: its rails run round it, so the patches round any narrow corridor
+  // hold every other one, and one deletion per round took 48 rounds; far apart by corridors,
+  // they go in two. An icosphere: far apart by patches.
+  std::vector<std::pair<std::string, RawPart>> parts = {{"torus 24 x 12", torus(24, 12, 30, 8)},
+                                                        {"icosphere 320", icosphere(2, 50)}};
+  for (const std::string& file : all_case_files()) parts.push_back({file, read_brep_json(file)});
+  for (const auto& [name, raw] : parts) {
+    CAPTURE(name);
+    const Part part = build_part(raw);
+    const auto axes = compute_medial_axes(part);
+    CutGraphOptions o;
+    o.track_width = part.mesh.size.value_or(part.bbox.diagonal() / 40.0);
+    o.lay_tracks = false;
+    const CutGraph g = build_cut_graph(part, axes, o);
+    o.narrow_one_per_round = true;
+    const CutGraph one = build_cut_graph(part, axes, o);
+    CHECK(one.narrow_rounds <= one.deleted.size());
+    const auto at = [](const CutGraph& c) {
+      std::vector<std::array<double, 3>> a;
+      for (const DeletedRail& d : c.deleted) a.push_back({d.at.x, d.at.y, d.at.z});
+      std::sort(a.begin(), a.end());
+      return a;
+    };
+    CHECK(at(g) == at(one));
+    CHECK(g.corridor_count == one.corridor_count);
+    CHECK(g.narrow_kept == one.narrow_kept);
+    CHECK(g.gverts.size() == one.gverts.size());
+    CHECK(g.narrow_rounds <= one.narrow_rounds);
+    if (name == "torus 24 x 12") {
+      CHECK(one.narrow_rounds >= 40);
+      CHECK(g.narrow_rounds <= 3);
+    }
+  }
 }
 
 TEST_CASE("after removal, every corridor narrower than the minimum is a kept small feature",

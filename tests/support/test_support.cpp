@@ -143,4 +143,22 @@ RawPart icosphere(int level, double r, double jitter) {
   return raw;
 }
 
+RawPart torus(int nu, int nv, double R, double r) {
+  constexpr double kTau = 6.283185307179586;
+  RawPart raw;
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      const double u = kTau * i / nu, w = kTau * j / nv;
+      raw.vertices.push_back(
+          {(R + r * std::cos(w)) * std::cos(u), (R + r * std::cos(w)) * std::sin(u), r * std::sin(w)});
+    }
+  }
+  const auto id = [&](int i, int j) { return static_cast<std::int64_t>((i % nu) * nv + j % nv); };
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j)
+      raw.patches.push_back({"q" + std::to_string(i) + "_" + std::to_string(j),
+                             {{id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)}}});
+  return raw;
+}
+
 }  // namespace laytracks::test

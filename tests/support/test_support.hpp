@@ -41,4 +41,7 @@ RawPart transformed(const RawPart& raw, const Transform& t);
 /// pseudo-random sequence): irregular triangles, as a tessellated part has.
 RawPart icosphere(int level, double r, double jitter = 0.0);
 
+/// A faceted torus: nu x nv planar quads (isosceles trapezoids), major radius R, minor r.
+RawPart torus(int nu, int nv, double R, double r);
+
 }  // namespace laytracks::test

@@ -142,6 +142,10 @@ struct CutGraphOptions {
   /// rails are deleted until it is not (0 keeps every rail). In adaptive mode the width is the
   /// law's at the radius of the corridor's branch point.
   double narrow_fraction = 0.5;
+  /// Delete for one narrow corridor per round instead of for every corridor of a round whose
+  /// deletion no narrower one's can change (docs/cutgraph.md): the slow reference that the
+  /// rounds must agree with, for tests.
+  bool narrow_one_per_round = false;
   /// Lay the track rails (false: stop after removing narrow corridors, to look at corridors).
   bool lay_tracks = true;
 };
