@@ -155,8 +155,8 @@ CutGraph build_cut_graph(const Part& part,
     track_width = [&](double radius) { return law ? law->width_for(radius, 1.0) : options.track_width; };
   if (tracks && options.narrow_fraction > 0.0) {
     cutgraph_detail::remove_narrow_corridors(part, axes, track_width, options.narrow_fraction,
-                                             options.narrow_one_per_round, suppressed, graph.deleted, graph.narrow_kept,
-                                             graph.narrow_rounds);
+                                             options.narrow_one_per_round, suppressed,
+                                             graph.deleted, graph.narrow_kept, graph.narrow_rounds);
   }
   cutgraph_detail::RailLayer layer(part, axes, graph, track_width);
   layer.suppress(suppressed);
