@@ -44,12 +44,20 @@ double length_between(const std::vector<Vec2>& loop, double u0, double u1) {
 
 class Finder {
  public:
-  Finder(const Part& part, const std::vector<MedialAxis>& axes, const CutGraph& graph)
-      : part_(part), axes_(axes), graph_(graph), index_(part) {}
+  Finder(const Part& part, const std::vector<MedialAxis>& axes, const CutGraph& graph,
+         OppositeCache* cache)
+      : part_(part), axes_(axes), graph_(graph), index_(part), cache_(cache) {}
 
   Corridors run() {
     build_segs();
-    UnionFind uf(out_.segs.size() + fan_nodes());
+    std::size_t loops = 0;
+    for (const Patch& p : part_.patches) {
+      loop_base_.push_back(loops);
+      loops += p.loops.size();
+    }
+    now_.resize(loops);
+    cursor_.assign(loops, 0);
+    UnionFind uf(out_.segs.size());
     for (std::size_t i = 0; i < out_.segs.size(); ++i) {
       link_opposite(i, uf);
       link_across(i, uf);
@@ -61,6 +69,7 @@ class Finder {
       out_.segs[i].corridor = number[r];
     }
     out_.count = number.size();
+    if (cache_) cache_->loops = std::move(now_);
     return out_;
   }
 
@@ -100,19 +109,6 @@ class Finder {
     }
   }
 
-  std::size_t fan_nodes() {
-    fan_base_ = out_.segs.size();
-    std::size_t n = 0;
-    for (std::uint32_t p = 0; p < part_.patches.size(); ++p) {
-      for (std::uint32_t l = 0; l < part_.patches[p].loops.size(); ++l) {
-        for (std::uint32_t i = 0; i < part_.patches[p].loops[l].vertices.size(); ++i) {
-          fan_[{p, l, i}] = fan_base_ + n++;
-        }
-      }
-    }
-    return n;
-  }
-
   /// The CUT-SEG of loop l of patch p that contains parameter u.
   std::size_t seg_at(std::uint32_t p, std::uint32_t l, double u) const {
     const std::size_t first = first_seg_.at({p, l});
@@ -133,34 +129,63 @@ class Finder {
   /// is not used (holes2__cube_holes, a regular octagon in a square: a point mapped through a
   /// branch point joined two corridors in one pose and not in another). (A CUT-SEG that maps into a
   /// concave vertex's fan therefore forms its own corridor with that fan.)
-  void link_opposite(std::size_t i, UnionFind& uf) const {
+  void link_opposite(std::size_t i, UnionFind& uf) {
     const CutSeg& cs = out_.segs[i];
-    const auto& poly = part_.patches[cs.patch.index()].polygon.loops[cs.loop];
     const double tol = kSamePointRel * part_.size;
-    for (double f : {0.5, 0.25, 0.75, 0.375, 0.625}) {
-      BoundaryPoint bp;
-      std::uint32_t seg;
-      double s;
-      bp.position = point_at(poly, cs.u0 + f * (cs.u1 - cs.u0), &seg, &s);
-      bp.site = {BoundarySite::Kind::Segment, cs.loop, seg};
-      bp.s = s;
-      const MedialAxis& axis = axes_[cs.patch.index()];
-      // Through a branch point (or within the point tolerance of one) the other side is any
-      // of its touching points, decided by rounding: not used either.
-      const auto m = axis.project(bp);
-      if (!m || !m->edge.valid()) continue;
-      const MaEdge& me = axis.edge(m->edge);
-      bool at_branch = false;
-      for (const MaVertexId v : {me.a, me.b})
-        at_branch = at_branch || (axis.vertex(v).degree >= 3 &&
-                                  distance(axis.vertex(v).position, m->position) <= tol);
-      if (at_branch) continue;
-      const auto q = axis.touching_point(*m, axis.far_side(*m, bp));
-      if (q.site.kind == BoundarySite::Kind::Corner) continue;
-      const double u = static_cast<double>(q.site.index) + q.s;
-      if (near_break(cs.patch.value, q.site.loop, u, q.position, tol)) continue;
-      uf.unite(i, seg_at(cs.patch.value, q.site.loop, u));
+    for (const OppositeCache::Image& q : images(cs)) {
+      if (!q.usable) continue;
+      if (near_break(cs.patch.value, q.loop, q.u, q.position, tol)) continue;
+      uf.unite(i, seg_at(cs.patch.value, q.loop, q.u));
     }
+  }
+
+  /// Where CUT-SEG cs's sample points map to across the axis: from the cache when the last
+  /// search had this CUT-SEG. CUT-SEGs come loop by loop, each loop's in order.
+  const std::array<OppositeCache::Image, OppositeCache::kAt.size()>& images(const CutSeg& cs) {
+    const std::size_t l = loop_base_[cs.patch.index()] + cs.loop;
+    std::vector<OppositeCache::Seg>& now = now_[l];
+    if (cache_ && l < cache_->loops.size()) {
+      const std::vector<OppositeCache::Seg>& was = cache_->loops[l];
+      std::size_t& c = cursor_[l];
+      while (c < was.size() && was[c].u0 < cs.u0) ++c;
+      if (c < was.size() && was[c].u0 == cs.u0 && was[c].u1 == cs.u1) {
+        now.push_back(was[c]);
+        return now.back().images;
+      }
+    }
+    OppositeCache::Seg seg{cs.u0, cs.u1, {}};
+    for (std::size_t k = 0; k < OppositeCache::kAt.size(); ++k)
+      seg.images[k] = map_across(cs.patch, cs.loop, cs.u0 + OppositeCache::kAt[k] * (cs.u1 - cs.u0));
+    now.push_back(seg);
+    return now.back().images;
+  }
+
+  OppositeCache::Image map_across(PatchId p, std::uint32_t l, double u) const {
+    const auto& poly = part_.patches[p.index()].polygon.loops[l];
+    const double tol = kSamePointRel * part_.size;
+    OppositeCache::Image out;
+    BoundaryPoint bp;
+    std::uint32_t seg;
+    double s;
+    bp.position = point_at(poly, u, &seg, &s);
+    bp.site = {BoundarySite::Kind::Segment, l, seg};
+    bp.s = s;
+    const MedialAxis& axis = axes_[p.index()];
+    // Through a branch point (or within the point tolerance of one) the other side is any
+    // of its touching points, decided by rounding: not used either.
+    const auto m = axis.project(bp);
+    if (!m || !m->edge.valid()) return out;
+    const MaEdge& me = axis.edge(m->edge);
+    for (const MaVertexId v : {me.a, me.b})
+      if (axis.vertex(v).degree >= 3 && distance(axis.vertex(v).position, m->position) <= tol)
+        return out;
+    const auto q = axis.touching_point(*m, axis.far_side(*m, bp));
+    if (q.site.kind == BoundarySite::Kind::Corner) return out;
+    out.usable = true;
+    out.loop = q.site.loop;
+    out.u = static_cast<double>(q.site.index) + q.s;
+    out.position = q.position;
+    return out;
   }
 
   /// True when a point of loop l (parameter u, position x) is within tol of a break point.
@@ -209,22 +234,26 @@ class Finder {
   Corridors out_;
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> first_seg_;
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<double>> breaks_;
-  std::map<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>, std::size_t> fan_;
-  std::size_t fan_base_ = 0;
+  OppositeCache* cache_;
+  std::vector<std::size_t> loop_base_;              ///< patch -> its first loop's index
+  std::vector<std::vector<OppositeCache::Seg>> now_;  ///< this search's CUT-SEGs, by loop
+  std::vector<std::size_t> cursor_;                 ///< by loop: where the sweep of the cache is
 };
 
 }  // namespace
 
 Corridors find_corridors(const Part& part,
                          const std::vector<MedialAxis>& axes,
-                         const CutGraph& graph) {
-  return Finder(part, axes, graph).run();
+                         const CutGraph& graph,
+                         OppositeCache* cache) {
+  return Finder(part, axes, graph, cache).run();
 }
 
 std::vector<CorridorPiece> corridor_pieces_impl(const Part& part,
                                                 const std::vector<MedialAxis>& axes,
-                                                const CutGraph& graph) {
-  Corridors c = find_corridors(part, axes, graph);
+                                                const CutGraph& graph,
+                                                OppositeCache* cache) {
+  Corridors c = find_corridors(part, axes, graph, cache);
   // Where the rail at each break point meets the axis: from the rail segments, else the corner.
   std::map<LoopKey, Vec2> ma_at;
   const auto key = [&](PatchId p, std::uint32_t loop, double u) {
@@ -390,8 +419,9 @@ bool is_gap(const Part& part, const CutSeg& cs, const TrackSpacing& spacing) {
 std::vector<TrackSeed> track_seeds(const Part& part,
                                    const std::vector<MedialAxis>& axes,
                                    const CutGraph& graph,
-                                   const TrackSpacing& spacing) {
-  const Corridors corridors = find_corridors(part, axes, graph);
+                                   const TrackSpacing& spacing,
+                                   OppositeCache* cache) {
+  const Corridors corridors = find_corridors(part, axes, graph, cache);
   std::vector<TrackSeed> seeds;
   for (std::size_t m : masters(corridors)) {
     const CutSeg& cs = corridors.segs[m];
@@ -403,8 +433,9 @@ std::vector<TrackSeed> track_seeds(const Part& part,
 std::vector<TrackSeed> gap_seeds(const Part& part,
                                  const std::vector<MedialAxis>& axes,
                                  const CutGraph& graph,
-                                 const TrackSpacing& spacing) {
-  const Corridors corridors = find_corridors(part, axes, graph);
+                                 const TrackSpacing& spacing,
+                                 OppositeCache* cache) {
+  const Corridors corridors = find_corridors(part, axes, graph, cache);
   std::vector<TrackSeed> seeds;
   for (const CutSeg& cs : corridors.segs) {
     if (is_gap(part, cs, spacing)) seeds_at(part, cs, cuts_along(part, cs, spacing), seeds);

@@ -153,17 +153,19 @@ CutGraph build_cut_graph(const Part& part,
   std::function<double(double)> track_width;
   if (tracks)
     track_width = [&](double radius) { return law ? law->width_for(radius, 1.0) : options.track_width; };
+  cutgraph_detail::OppositeCache cache;
   if (tracks && options.narrow_fraction > 0.0) {
     cutgraph_detail::remove_narrow_corridors(part, axes, track_width, options.narrow_fraction,
                                              options.narrow_one_per_round, suppressed,
-                                             graph.deleted, graph.narrow_kept, graph.narrow_rounds);
+                                             graph.deleted, graph.narrow_kept, graph.narrow_rounds,
+                                             cache);
   }
   cutgraph_detail::RailLayer layer(part, axes, graph, track_width);
   layer.suppress(suppressed);
   layer.lay_sources();
   const auto count = [&] {
     std::size_t n = 0;
-    for (const CorridorPiece& c : cutgraph_detail::corridor_pieces_impl(part, axes, graph)) {
+    for (const CorridorPiece& c : cutgraph_detail::corridor_pieces_impl(part, axes, graph, &cache)) {
       n = std::max(n, c.corridor + 1);
     }
     return n;
@@ -171,11 +173,11 @@ CutGraph build_cut_graph(const Part& part,
   graph.corridor_count = count();
   if (tracks && options.lay_tracks) {
     const cutgraph_detail::TrackSpacing spacing{options.track_width, law};
-    for (const auto& seed : cutgraph_detail::track_seeds(part, axes, graph, spacing))
+    for (const auto& seed : cutgraph_detail::track_seeds(part, axes, graph, spacing, &cache))
       layer.lay_from(seed.patch, seed.point);
     // Sides the longest CUT-SEG's rails did not reach get tracks of their own (docs/cutgraph.md).
     for (int round = 0; round < 3; ++round) {
-      const auto gaps = cutgraph_detail::gap_seeds(part, axes, graph, spacing);
+      const auto gaps = cutgraph_detail::gap_seeds(part, axes, graph, spacing, &cache);
       if (gaps.empty()) break;
       for (const auto& seed : gaps) layer.lay_from(seed.patch, seed.point);
     }

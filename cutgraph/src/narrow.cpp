@@ -27,13 +27,14 @@ struct Round {
 Round lay_round(const Part& part,
                 const std::vector<MedialAxis>& axes,
                 const std::function<double(double)>& track_width,
-                const std::vector<Vec3>& suppressed) {
+                const std::vector<Vec3>& suppressed,
+                OppositeCache& cache) {
   Round r;
   RailLayer layer(part, axes, r.graph, track_width);
   layer.suppress(suppressed);
   layer.lay_sources();
   r.links = layer.links();
-  r.pieces = corridor_pieces_impl(part, axes, r.graph);
+  r.pieces = corridor_pieces_impl(part, axes, r.graph, &cache);
   return r;
 }
 
@@ -56,7 +57,8 @@ void remove_narrow_corridors(const Part& part,
                              std::vector<Vec3>& suppressed,
                              std::vector<DeletedRail>& deleted,
                              std::size_t& kept,
-                             std::size_t& rounds) {
+                             std::size_t& rounds,
+                             OppositeCache& cache) {
   const BoundaryIndex index(part);
   // Patches that share an edge.
   std::vector<std::vector<std::uint32_t>> neighbours(part.patches.size());
@@ -76,7 +78,7 @@ void remove_narrow_corridors(const Part& part,
   // icosphere of 1280 triangles needs the first (17 rounds; 135 by corridors alone), a torus
   // of 24 x 12 quads, whose rails run round it, the second (2 rounds; 48 by patches alone). Bounded by the number of source points.
   for (std::size_t round = 0; round < 100000; ++round) {
-    const Round r = lay_round(part, axes, track_width, suppressed);
+    const Round r = lay_round(part, axes, track_width, suppressed, cache);
     const CutGraph& g = r.graph;
     // Rails joined through boundary points (not through MA nodes or corners) form one set.
     UnionFind uf(g.gverts.size());

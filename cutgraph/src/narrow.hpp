@@ -4,6 +4,7 @@
 #include <functional>
 #include <vector>
 
+#include "corridors.hpp"
 #include "laytracks/cutgraph/cut_graph.hpp"
 
 namespace laytracks::cutgraph_detail {
@@ -15,7 +16,8 @@ namespace laytracks::cutgraph_detail {
 /// branch point) except small features (a corridor bounded by a convex corner) and corridors
 /// whose only deletable rail is the last one at a concave vertex (counted in `kept`).
 /// `suppressed` receives the positions of the deleted source points, `deleted` a record each,
-/// `rounds` the count of rounds that deleted rails.
+/// `rounds` the count of rounds that deleted rails. `cache` keeps the points mapped across the
+/// axis from round to round.
 void remove_narrow_corridors(const Part& part,
                              const std::vector<MedialAxis>& axes,
                              const std::function<double(double)>& track_width,
@@ -24,6 +26,7 @@ void remove_narrow_corridors(const Part& part,
                              std::vector<Vec3>& suppressed,
                              std::vector<DeletedRail>& deleted,
                              std::size_t& kept,
-                             std::size_t& rounds);
+                             std::size_t& rounds,
+                             OppositeCache& cache);
 
 }  // namespace laytracks::cutgraph_detail

@@ -284,6 +284,34 @@ TEST_CASE("narrow-corridor rounds delete what one deletion per round deletes, in
   }
 }
 
+TEST_CASE("corridors counted with the rounds' cache of mapped points are those found afresh",
+          "[cutgraph][narrow]") {
+  // build_cut_graph keeps where CUT-SEGs' points map across the axis from one search for
+  // corridors to the next; corridor_pieces maps them all again.
+  std::vector<std::pair<std::string, RawPart>> parts = {{"torus 24 x 12", torus(24, 12, 30, 8)},
+                                                        {"icosphere 320", icosphere(2, 50, 0.15)}};
+  for (const std::string& file : all_case_files()) parts.push_back({file, read_brep_json(file)});
+  const auto fresh = [](const Part& part, const std::vector<MedialAxis>& axes, const CutGraph& g) {
+    std::size_t n = 0;
+    for (const CorridorPiece& c : corridor_pieces(part, axes, g)) n = std::max(n, c.corridor + 1);
+    return n;
+  };
+  for (const auto& [name, raw] : parts) {
+    CAPTURE(name);
+    const Part part = build_part(raw);
+    const auto axes = compute_medial_axes(part);
+    CutGraphOptions o;
+    o.track_width = part.mesh.size.value_or(part.bbox.diagonal() / 40.0);
+    o.lay_tracks = false;
+    const CutGraph sources = build_cut_graph(part, axes, o);
+    CHECK(sources.corridor_count == fresh(part, axes, sources));
+    o.lay_tracks = true;
+    const CutGraph tracks = build_cut_graph(part, axes, o);
+    CHECK(tracks.track_count == fresh(part, axes, tracks));
+    CHECK(tracks.track_count >= tracks.corridor_count);
+  }
+}
+
 TEST_CASE("after removal, every corridor narrower than the minimum is a kept small feature",
           "[cutgraph][narrow][cases]") {
   for (const std::string& file : all_case_files()) {
