@@ -49,12 +49,12 @@ class Finder {
       : part_(part), axes_(axes), graph_(graph), index_(part), cache_(cache) {}
 
   Corridors run() {
-    build_segs();
     std::size_t loops = 0;
     for (const Patch& p : part_.patches) {
       loop_base_.push_back(loops);
       loops += p.loops.size();
     }
+    build_segs(loops);
     now_.resize(loops);
     cursor_.assign(loops, 0);
     UnionFind uf(out_.segs.size());
@@ -75,17 +75,18 @@ class Finder {
 
  private:
   /// Break points of every loop: its CUT-VERTs and its non-smooth corners.
-  void build_segs() {
-    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<double>> breaks;
+  void build_segs(std::size_t loops) {
+    breaks_.assign(loops, {});
+    first_seg_.assign(loops, 0);
     for (const CutVert& c : graph_.cuts) {
       const double n =
           static_cast<double>(part_.patches[c.patch.index()].polygon.loops[c.at.loop].size());
-      breaks[{c.patch.value, c.at.loop}].push_back(std::fmod(c.at.u(), n));
+      breaks_[flat(c.patch.value, c.at.loop)].push_back(std::fmod(c.at.u(), n));
     }
     for (std::uint32_t p = 0; p < part_.patches.size(); ++p) {
       const Patch& patch = part_.patches[p];
       for (std::uint32_t l = 0; l < patch.loops.size(); ++l) {
-        auto& b = breaks[{p, l}];
+        auto& b = breaks_[flat(p, l)];
         for (std::uint32_t i = 0; i < patch.loops[l].vertices.size(); ++i) {
           if (corner_turn(part_, PatchId(p), l, i) != 0) b.push_back(static_cast<double>(i));
         }
@@ -94,7 +95,7 @@ class Finder {
                 b.end());
         const auto& poly = patch.polygon.loops[l];
         const double n = static_cast<double>(poly.size());
-        first_seg_[{p, l}] = out_.segs.size();
+        first_seg_[flat(p, l)] = out_.segs.size();
         if (b.empty()) {  // a loop without rails or corners: one CUT-SEG all round
           out_.segs.push_back({PatchId(p), l, 0.0, n, length_between(poly, 0.0, n), 0, {}, {}});
           continue;
@@ -104,20 +105,21 @@ class Finder {
           const double u1 = k + 1 < b.size() ? b[k + 1] : b[0] + n;
           out_.segs.push_back({PatchId(p), l, u0, u1, length_between(poly, u0, u1), 0, {}, {}});
         }
-        breaks_[{p, l}] = b;
       }
     }
   }
 
+  /// The index of loop l of patch p among all patches' loops.
+  std::size_t flat(std::uint32_t p, std::uint32_t l) const { return loop_base_[p] + l; }
+
   /// The CUT-SEG of loop l of patch p that contains parameter u.
   std::size_t seg_at(std::uint32_t p, std::uint32_t l, double u) const {
-    const std::size_t first = first_seg_.at({p, l});
+    const std::size_t first = first_seg_[flat(p, l)];
     const double n = static_cast<double>(part_.patches[p].polygon.loops[l].size());
     u = std::fmod(u, n);
     if (u < 0.0) u += n;
-    const auto it = breaks_.find({p, l});
-    if (it == breaks_.end()) return first;
-    const auto& b = it->second;
+    const auto& b = breaks_[flat(p, l)];
+    if (b.empty()) return first;
     const auto k = std::upper_bound(b.begin(), b.end(), u) - b.begin();
     // Before the first break: the last CUT-SEG, which wraps round.
     return first + (k == 0 ? b.size() - 1 : static_cast<std::size_t>(k) - 1);
@@ -142,7 +144,7 @@ class Finder {
   /// Where CUT-SEG cs's sample points map to across the axis: from the cache when the last
   /// search had this CUT-SEG. CUT-SEGs come loop by loop, each loop's in order.
   const std::array<OppositeCache::Image, OppositeCache::kAt.size()>& images(const CutSeg& cs) {
-    const std::size_t l = loop_base_[cs.patch.index()] + cs.loop;
+    const std::size_t l = flat(cs.patch.value, cs.loop);
     std::vector<OppositeCache::Seg>& now = now_[l];
     if (cache_ && l < cache_->loops.size()) {
       const std::vector<OppositeCache::Seg>& was = cache_->loops[l];
@@ -190,9 +192,8 @@ class Finder {
 
   /// True when a point of loop l (parameter u, position x) is within tol of a break point.
   bool near_break(std::uint32_t p, std::uint32_t l, double u, Vec2 x, double tol) const {
-    const auto it = breaks_.find({p, l});
-    if (it == breaks_.end()) return false;
-    const auto& b = it->second;
+    const auto& b = breaks_[flat(p, l)];
+    if (b.empty()) return false;
     const auto& poly = part_.patches[p].polygon.loops[l];
     const double n = static_cast<double>(poly.size());
     u = std::fmod(u, n);
@@ -232,8 +233,8 @@ class Finder {
   const CutGraph& graph_;
   BoundaryIndex index_;
   Corridors out_;
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> first_seg_;
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<double>> breaks_;
+  std::vector<std::size_t> first_seg_;         ///< by loop: its first CUT-SEG
+  std::vector<std::vector<double>> breaks_;    ///< by loop: its break points, ascending
   OppositeCache* cache_;
   std::vector<std::size_t> loop_base_;              ///< patch -> its first loop's index
   std::vector<std::vector<OppositeCache::Seg>> now_;  ///< this search's CUT-SEGs, by loop
