@@ -88,17 +88,35 @@ void remove_narrow_corridors(const Part& part,
         continue;
       uf.unite(l.from, l.to);
     }
-    // Break points of the CUT-SEGs: the G-CUT-VERT there, if any.
-    std::map<LoopKey, GCutId> cut_at;
+    // Break points of the CUT-SEGs: the G-CUT-VERT there, if any (the last CUT-VERT at a
+    // place names it), found by binary search.
     const auto key = [&](PatchId p, std::uint32_t loop, double u) {
       return loop_key(part, p, loop, u);
     };
-    for (const CutVert& c : g.cuts) cut_at[key(c.patch, c.at.loop, c.at.u())] = c.g;
-    // Corridors: width (longest CUT-SEG) and bounding break points.
-    std::map<std::size_t, double> width;
-    std::map<std::size_t, double> radius;  // the longest rail bounding the corridor
-    std::map<std::size_t, std::set<std::uint32_t>> bounds;
-    std::set<std::size_t> small_feature;
+    std::vector<std::tuple<LoopKey, std::size_t, GCutId>> cut_at;
+    cut_at.reserve(g.cuts.size());
+    for (std::size_t i = 0; i < g.cuts.size(); ++i) {
+      const CutVert& c = g.cuts[i];
+      cut_at.emplace_back(key(c.patch, c.at.loop, c.at.u()), i, c.g);
+    }
+    std::sort(cut_at.begin(), cut_at.end(), [](const auto& x, const auto& y) {
+      return std::tie(std::get<0>(x), std::get<1>(x)) < std::tie(std::get<0>(y), std::get<1>(y));
+    });
+    const auto cut_g = [&](const LoopKey& k) -> const GCutId* {
+      const auto it = std::upper_bound(cut_at.begin(), cut_at.end(), k, [](const LoopKey& x, const auto& y) {
+        return x < std::get<0>(y);
+      });
+      if (it == cut_at.begin() || std::get<0>(*std::prev(it)) != k) return nullptr;
+      return &std::get<2>(*std::prev(it));
+    };
+    // Corridors (dense ids): width (longest CUT-SEG) and bounding break points.
+    std::size_t corridors = 0;
+    for (const CorridorPiece& c : r.pieces) corridors = std::max(corridors, c.corridor + 1);
+    std::vector<double> width(corridors, 0.0);
+    std::vector<double> radius(corridors, 0.0);  // the longest rail bounding the corridor
+    std::vector<std::vector<std::uint32_t>> bounds(corridors);  // ascending, no repeats
+    std::vector<bool> small_feature(corridors, false);
+    std::vector<std::vector<std::uint32_t>> corridor_patches(corridors);  // ascending
     for (const CorridorPiece& c : r.pieces) {
       width[c.corridor] = std::max(width[c.corridor], c.length);
       const auto& poly = part.patches[c.patch.index()].polygon.loops[c.loop];
@@ -108,78 +126,91 @@ void remove_narrow_corridors(const Part& part,
       };
       radius[c.corridor] = std::max({radius[c.corridor], distance(at(c.u0), c.ma0),
                                      distance(at(c.u1), c.ma1)});
+      corridor_patches[c.corridor].push_back(c.patch.value);
       for (double u : {c.u0, c.u1}) {
-        const auto it = cut_at.find(key(c.patch, c.loop, u));
-        if (it == cut_at.end()) {
+        const GCutId* gc = cut_g(key(c.patch, c.loop, u));
+        if (!gc) {
           // A corner: a convex one makes the corridor a small feature, which stays.
           const auto n = part.patches[c.patch.index()].polygon.loops[c.loop].size();
           const auto corner =
               static_cast<std::uint32_t>(std::llround(u) % static_cast<long long>(n));
-          if (corner_turn(part, c.patch, c.loop, corner) > 0) small_feature.insert(c.corridor);
+          if (corner_turn(part, c.patch, c.loop, corner) > 0) small_feature[c.corridor] = true;
           continue;
         }
-        bounds[c.corridor].insert(it->second.value);
+        bounds[c.corridor].push_back(gc->value);
       }
     }
+    const auto sort_unique = [](auto& v) {
+      std::sort(v.begin(), v.end());
+      v.erase(std::unique(v.begin(), v.end()), v.end());
+    };
+    for (auto& b : bounds) sort_unique(b);
+    for (auto& cp : corridor_patches) sort_unique(cp);
     // Source points per rail set, and how many source rails end at each concave corner.
-    std::map<std::size_t, std::vector<std::uint32_t>> sources_of;
-    std::map<std::uint32_t, std::size_t> rays_at_vertex;
+    std::vector<std::vector<std::uint32_t>> sources_of(g.gverts.size());
+    std::vector<std::size_t> rays_at_vertex(part.vertices.size(), 0);
     for (std::uint32_t i = 0; i < g.gverts.size(); ++i) {
       if (!g.gverts[i].source) continue;
       sources_of[uf.find(i)].push_back(i);
-      if (g.gverts[i].vertex) ++rays_at_vertex[g.gverts[i].vertex->value];
+      if (g.gverts[i].vertex) ++rays_at_vertex[g.gverts[i].vertex->index()];
     }
-    // Where each G-CUT-VERT first appears along the boundary (patch, loop, u).
+    // Where each G-CUT-VERT first appears along the boundary (patch, loop, u); the patch of its
+    // last CUT-VERT.
     std::vector<LoopKey> place(g.gverts.size(), std::make_tuple(UINT32_MAX, UINT32_MAX, LLONG_MAX));
+    std::vector<PatchId> patch_of(g.gverts.size());
     for (const CutVert& c : g.cuts) {
       place[c.g.index()] = std::min(place[c.g.index()], key(c.patch, c.at.loop, c.at.u()));
+      patch_of[c.g.index()] = c.patch;
     }
+    // The G-CUT-VERTs whose rails run through a branch point.
+    std::vector<bool> via_branch(g.gverts.size(), false);
+    for (const RailSegment& seg : g.segments)
+      if (g.macuts[seg.ma.index()].branch) via_branch[g.cuts[seg.cut.index()].g.index()] = true;
     // The branch point each rail set meets (its first), for rails through branch points.
-    std::map<std::size_t, std::uint32_t> branch_of;
+    constexpr std::uint32_t kNone = UINT32_MAX;
+    std::vector<std::uint32_t> branch_of(g.gverts.size(), kNone);
     for (const auto& l : r.links) {
       if (!(l.to & kMaNodeFlag) || (l.from & kMaNodeFlag)) continue;
       if (!g.macuts[l.to & ~kMaNodeFlag].branch) continue;
-      branch_of.emplace(uf.find(l.from), l.to);
+      std::uint32_t& b = branch_of[uf.find(l.from)];
+      if (b == kNone) b = l.to;
     }
     // Widths within rounding of each other, or of the threshold, must decide the same in every
     // pose: compare them on a grid of 1e-9 x the part's size.
     const double grain = 1e-9 * part.size;
     const auto quantum = [&](double x) { return std::llround(x / grain); };
     std::vector<std::pair<long long, std::size_t>> order;
-    for (const auto& [corridor, w] : width) {
+    for (std::size_t corridor = 0; corridor < corridors; ++corridor) {
+      const double w = width[corridor];
       if (quantum(w) < quantum(narrow_fraction * track_width(radius[corridor])))
         order.push_back({quantum(w), corridor});
     }
     std::sort(order.begin(), order.end());
     std::vector<std::pair<double, std::size_t>> narrow;
     for (const auto& [q, corridor] : order) narrow.push_back({width[corridor], corridor});
-    // Patches per corridor and per rail set; the corridors each rail set bounds.
-    std::map<std::size_t, std::set<std::uint32_t>> corridor_patches;
-    for (const CorridorPiece& c : r.pieces) corridor_patches[c.corridor].insert(c.patch.value);
-    std::map<std::size_t, std::set<std::uint32_t>> set_patches;
+    // Patches per rail set; the corridors each rail set bounds (ascending).
+    std::vector<std::vector<std::uint32_t>> set_patches(g.gverts.size());
     for (const auto& l : r.links)
       for (std::uint32_t end : {l.from, l.to})
-        if (!(end & kMaNodeFlag)) set_patches[uf.find(end)].insert(l.patch.value);
-    std::map<std::size_t, std::set<std::size_t>> corridors_of_set;
-    for (const auto& [corridor, gs] : bounds)
-      for (std::uint32_t b : gs) corridors_of_set[uf.find(b)].insert(corridor);
-    const auto sets_of = [&](std::size_t corridor) {
-      std::set<std::size_t> sets;
-      const auto it = bounds.find(corridor);
-      if (it != bounds.end())
-        for (std::uint32_t b : it->second) sets.insert(uf.find(b));
-      return sets;
-    };
-    // What each deletion of the round (made, or waiting for the next round) claims.
-    struct Claim {
-      std::vector<bool> patches;    // its region and the patches beside it
-      std::set<std::size_t> near;   // the corridors it merges and those beside them
-    };
-    std::vector<Claim> claims;
+        if (!(end & kMaNodeFlag)) set_patches[uf.find(end)].push_back(l.patch.value);
+    for (auto& sp : set_patches) sort_unique(sp);
+    std::vector<std::vector<std::size_t>> corridors_of_set(g.gverts.size());
+    for (std::size_t corridor = 0; corridor < corridors; ++corridor)
+      for (std::uint32_t b : bounds[corridor]) corridors_of_set[uf.find(b)].push_back(corridor);
+    for (auto& cs : corridors_of_set) sort_unique(cs);
+    // What each deletion of the round (made, or waiting for the next round) claims: its region
+    // and the patches beside it, the corridors it merges and those beside them; by patch and by
+    // corridor, the claims that hold it.
+    std::vector<std::vector<std::uint32_t>> claims_at_patch(part.patches.size());
+    std::vector<std::vector<std::uint32_t>> claims_at_corridor(corridors);
+    std::uint32_t claim_count = 0;
+    std::vector<std::uint32_t> seen(part.patches.size(), UINT32_MAX);  // claim marking a patch
+    std::vector<std::uint32_t> seen_corridor(corridors, UINT32_MAX);
+    std::vector<char> meets;  // per claim: meets this deletion's region (by patches)
     bool removed = false;
     kept = 0;
     for (const auto& [w, corridor] : narrow) {
-      if (small_feature.count(corridor)) {
+      if (small_feature[corridor]) {
         ++kept;
         continue;
       }
@@ -190,10 +221,9 @@ void remove_narrow_corridors(const Part& part,
       std::map<std::uint32_t, std::vector<std::size_t>> units;  // key: MA node or set
       for (std::uint32_t b : bounds[corridor]) {
         const std::size_t set = uf.find(b);
-        if (!sources_of.count(set)) continue;
-        const auto node = branch_of.find(set);
+        if (sources_of[set].empty()) continue;
         const std::uint32_t unit =
-            node != branch_of.end() ? node->second : static_cast<std::uint32_t>(set);
+            branch_of[set] != kNone ? branch_of[set] : static_cast<std::uint32_t>(set);
         auto& u = units[unit];
         if (std::find(u.begin(), u.end(), set) == u.end()) u.push_back(set);
       }
@@ -209,7 +239,7 @@ void remove_narrow_corridors(const Part& part,
           srcs.insert(srcs.end(), sources_of[set].begin(), sources_of[set].end());
         }
         const bool last_at_concave = std::any_of(srcs.begin(), srcs.end(), [&](std::uint32_t src) {
-          return g.gverts[src].vertex && rays_at_vertex[g.gverts[src].vertex->value] <= 1;
+          return g.gverts[src].vertex && rays_at_vertex[g.gverts[src].vertex->index()] <= 1;
         });
         if (last_at_concave) continue;
         auto unit_key = std::make_tuple(UINT32_MAX, UINT32_MAX, LLONG_MAX);
@@ -226,33 +256,46 @@ void remove_narrow_corridors(const Part& part,
         continue;
       }
       // Its region: the patches of its CUT-SEGs and of the rails it deletes.
-      std::set<std::uint32_t> region = corridor_patches[corridor];
+      std::vector<std::uint32_t> region = corridor_patches[corridor];
       for (std::uint32_t src : best) {
-        const auto it = set_patches.find(uf.find(src));
-        if (it != set_patches.end()) region.insert(it->second.begin(), it->second.end());
+        const auto& sp = set_patches[uf.find(src)];
+        region.insert(region.end(), sp.begin(), sp.end());
       }
+      sort_unique(region);
       // The corridors it merges: this one and those across the deleted rails.
-      std::set<std::size_t> touched{corridor};
+      std::vector<std::size_t> touched{corridor};
       for (std::size_t set : best_sets)
-        touched.insert(corridors_of_set[set].begin(), corridors_of_set[set].end());
-      // Far enough from every claim of the round by patches or by corridors.
-      const bool waits = (one_per_round && removed) ||
-                         std::any_of(claims.begin(), claims.end(), [&](const Claim& c) {
-                           const bool by_patches = std::any_of(
-                               region.begin(), region.end(), [&](std::uint32_t p) { return c.patches[p]; });
-                           const bool by_corridors = std::any_of(
-                               touched.begin(), touched.end(), [&](std::size_t k) { return c.near.count(k) > 0; });
-                           return by_patches && by_corridors;
-                         });
-      Claim claim{std::vector<bool>(part.patches.size(), false), touched};
+        touched.insert(touched.end(), corridors_of_set[set].begin(), corridors_of_set[set].end());
+      sort_unique(touched);
+      // Far from every claim of the round by patches or by corridors: no claim meets both its
+      // region (by patches) and the corridors it merges (by corridors).
+      meets.assign(claim_count, 0);
+      for (std::uint32_t p : region)
+        for (std::uint32_t c : claims_at_patch[p]) meets[c] = 1;
+      bool waits = one_per_round && removed;
+      for (std::size_t k : touched)
+        for (std::uint32_t c : claims_at_corridor[k]) waits = waits || meets[c];
+      // Its claim.
+      const std::uint32_t claim = claim_count++;
+      const auto claim_patch = [&](std::uint32_t p) {
+        if (seen[p] == claim) return;
+        seen[p] = claim;
+        claims_at_patch[p].push_back(claim);
+      };
       for (std::uint32_t p : region) {
-        claim.patches[p] = true;
-        for (std::uint32_t q : neighbours[p]) claim.patches[q] = true;
+        claim_patch(p);
+        for (std::uint32_t q : neighbours[p]) claim_patch(q);
       }
-      for (std::size_t c : touched)
-        for (std::size_t set : sets_of(c))
-          claim.near.insert(corridors_of_set[set].begin(), corridors_of_set[set].end());
-      claims.push_back(std::move(claim));
+      const auto claim_corridor = [&](std::size_t k) {
+        if (seen_corridor[k] == claim) return;
+        seen_corridor[k] = claim;
+        claims_at_corridor[k].push_back(claim);
+      };
+      for (std::size_t c : touched) {
+        claim_corridor(c);
+        for (std::uint32_t b : bounds[c])
+          for (std::size_t k : corridors_of_set[uf.find(b)]) claim_corridor(k);
+      }
       if (waits) continue;  // a narrower corridor of the round is near: the next round
       for (std::uint32_t src : best) {
         const GCutVert& gv = g.gverts[src];
@@ -260,18 +303,12 @@ void remove_narrow_corridors(const Part& part,
         DeletedRail d;
         d.at = gv.position;
         d.corridor_width = w;
-        for (const CutVert& c : g.cuts) {
-          if (c.g.value == src) d.patch = c.patch;
-        }
-        for (const RailSegment& seg : g.segments) {
-          if (g.cuts[seg.cut.index()].g.value == src && g.macuts[seg.ma.index()].branch) {
-            d.through_branch_point = true;
-          }
-        }
+        d.patch = patch_of[src];
+        d.through_branch_point = via_branch[src];
         deleted.push_back(d);
       }
       for (std::uint32_t src : best)
-        if (g.gverts[src].vertex) --rays_at_vertex[g.gverts[src].vertex->value];
+        if (g.gverts[src].vertex) --rays_at_vertex[g.gverts[src].vertex->index()];
       removed = true;
     }
     if (!removed) return;
