@@ -275,26 +275,21 @@ void remove_narrow_corridors(const Part& part,
       bool waits = one_per_round && removed;
       for (std::size_t k : touched)
         for (std::uint32_t c : claims_at_corridor[k]) waits = waits || meets[c];
-      // Its claim.
+      // Its claim, recorded once per patch and per corridor it holds.
       const std::uint32_t claim = claim_count++;
-      const auto claim_patch = [&](std::uint32_t p) {
-        if (seen[p] == claim) return;
-        seen[p] = claim;
-        claims_at_patch[p].push_back(claim);
+      const auto hold = [&](std::vector<std::uint32_t>& seen_by, auto& lists, std::size_t k) {
+        if (seen_by[k] == claim) return;
+        seen_by[k] = claim;
+        lists[k].push_back(claim);
       };
       for (std::uint32_t p : region) {
-        claim_patch(p);
-        for (std::uint32_t q : neighbours[p]) claim_patch(q);
+        hold(seen, claims_at_patch, p);
+        for (std::uint32_t q : neighbours[p]) hold(seen, claims_at_patch, q);
       }
-      const auto claim_corridor = [&](std::size_t k) {
-        if (seen_corridor[k] == claim) return;
-        seen_corridor[k] = claim;
-        claims_at_corridor[k].push_back(claim);
-      };
       for (std::size_t c : touched) {
-        claim_corridor(c);
+        hold(seen_corridor, claims_at_corridor, c);
         for (std::uint32_t b : bounds[c])
-          for (std::size_t k : corridors_of_set[uf.find(b)]) claim_corridor(k);
+          for (std::size_t k : corridors_of_set[uf.find(b)]) hold(seen_corridor, claims_at_corridor, k);
       }
       if (waits) continue;  // a narrower corridor of the round is near: the next round
       for (std::uint32_t src : best) {

@@ -247,24 +247,42 @@ TEST_CASE("far-apart narrow corridors lose their rails in one round", "[cutgraph
   CHECK(validate_cut_graph(part, axes, g).empty());
 }
 
+namespace {
+
+/// A torus of 24 x 12 quads (its rails run round it), an icosphere of 320 triangles (radii
+/// jittered by `jitter`), and every test part.
+std::vector<std::pair<std::string, RawPart>> shells_and_cases(double jitter) {
+  std::vector<std::pair<std::string, RawPart>> parts = {{"torus 24 x 12", torus(24, 12, 30, 8)},
+                                                        {"icosphere 320", icosphere(2, 50, jitter)}};
+  for (const std::string& file : all_case_files()) parts.push_back({file, read_brep_json(file)});
+  return parts;
+}
+
+/// A part with its axes, and options that lay its source rails at its own element size.
+struct SourcesOnly {
+  Part part;
+  std::vector<MedialAxis> axes;
+  CutGraphOptions options;
+  explicit SourcesOnly(const RawPart& raw)
+      : part(build_part(raw)), axes(compute_medial_axes(part)) {
+    options.track_width = part.mesh.size.value_or(part.bbox.diagonal() / 40.0);
+    options.lay_tracks = false;
+  }
+};
+
+}  // namespace
+
 TEST_CASE("narrow-corridor rounds delete what one deletion per round deletes, in far fewer "
           "rounds", "[cutgraph][narrow]") {
   // A torus of 24 x 12 quads: its rails run round it, so the patches round any narrow corridor
   // hold every other one, and one deletion per round took 48 rounds; far apart by corridors,
   // they go in two. An icosphere: far apart by patches.
-  std::vector<std::pair<std::string, RawPart>> parts = {{"torus 24 x 12", torus(24, 12, 30, 8)},
-                                                        {"icosphere 320", icosphere(2, 50)}};
-  for (const std::string& file : all_case_files()) parts.push_back({file, read_brep_json(file)});
-  for (const auto& [name, raw] : parts) {
+  for (const auto& [name, raw] : shells_and_cases(0.0)) {
     CAPTURE(name);
-    const Part part = build_part(raw);
-    const auto axes = compute_medial_axes(part);
-    CutGraphOptions o;
-    o.track_width = part.mesh.size.value_or(part.bbox.diagonal() / 40.0);
-    o.lay_tracks = false;
-    const CutGraph g = build_cut_graph(part, axes, o);
-    o.narrow_one_per_round = true;
-    const CutGraph one = build_cut_graph(part, axes, o);
+    SourcesOnly s(raw);
+    const CutGraph g = build_cut_graph(s.part, s.axes, s.options);
+    s.options.narrow_one_per_round = true;
+    const CutGraph one = build_cut_graph(s.part, s.axes, s.options);
     CHECK(one.narrow_rounds <= one.deleted.size());
     const auto at = [](const CutGraph& c) {
       std::vector<std::array<double, 3>> a;
@@ -288,26 +306,19 @@ TEST_CASE("corridors counted with the rounds' cache of mapped points are those f
           "[cutgraph][narrow]") {
   // build_cut_graph keeps where CUT-SEGs' points map across the axis from one search for
   // corridors to the next; corridor_pieces maps them all again.
-  std::vector<std::pair<std::string, RawPart>> parts = {{"torus 24 x 12", torus(24, 12, 30, 8)},
-                                                        {"icosphere 320", icosphere(2, 50, 0.15)}};
-  for (const std::string& file : all_case_files()) parts.push_back({file, read_brep_json(file)});
   const auto fresh = [](const Part& part, const std::vector<MedialAxis>& axes, const CutGraph& g) {
     std::size_t n = 0;
     for (const CorridorPiece& c : corridor_pieces(part, axes, g)) n = std::max(n, c.corridor + 1);
     return n;
   };
-  for (const auto& [name, raw] : parts) {
+  for (const auto& [name, raw] : shells_and_cases(0.15)) {
     CAPTURE(name);
-    const Part part = build_part(raw);
-    const auto axes = compute_medial_axes(part);
-    CutGraphOptions o;
-    o.track_width = part.mesh.size.value_or(part.bbox.diagonal() / 40.0);
-    o.lay_tracks = false;
-    const CutGraph sources = build_cut_graph(part, axes, o);
-    CHECK(sources.corridor_count == fresh(part, axes, sources));
-    o.lay_tracks = true;
-    const CutGraph tracks = build_cut_graph(part, axes, o);
-    CHECK(tracks.track_count == fresh(part, axes, tracks));
+    SourcesOnly s(raw);
+    const CutGraph sources = build_cut_graph(s.part, s.axes, s.options);
+    CHECK(sources.corridor_count == fresh(s.part, s.axes, sources));
+    s.options.lay_tracks = true;
+    const CutGraph tracks = build_cut_graph(s.part, s.axes, s.options);
+    CHECK(tracks.track_count == fresh(s.part, s.axes, tracks));
     CHECK(tracks.track_count >= tracks.corridor_count);
   }
 }
