@@ -122,7 +122,8 @@ int run_mesh(const std::vector<std::string>& argv) {
     doc["loop_closures"] = r.loop_closures;
     doc["rail_merges"] = r.rail_merges;
     doc["parity_fixes"] = {{"boundary_pieces", r.stats.parity_boundary},
-                           {"rail_segments", r.stats.parity_rails}};
+                           {"rail_segments", r.stats.parity_rails},
+                           {"strips_matched", r.stats.parity_strips}};
     doc["seconds"] = {{"medial", r.times.medial}, {"rails", r.times.rails},
                       {"quads", r.times.quads},   {"refill", r.times.refill},
                       {"smooth", r.times.smooth},

@@ -1091,6 +1091,71 @@ class QuadBuilder {
     return n;
   }
 
+  /// A strip's run with fewer edges takes the extra one only where its edges stay at least this
+  /// x the other run's mean edge: a narrow end split finer makes quads of aspect >= 5 across
+  /// the strip (cover_bosses' strips between its corner bosses and the outline).
+  static constexpr double kStripMatchRel = 0.5;
+
+  /// For fix_parity: in face f of a strip's shape (exactly two runs of boundary pieces, the
+  /// rest rails) whose runs differ in edge count, the half of the run with fewer edges that is
+  /// a free piece (of this patch only) and whose edges stay longest with one more; kNone
+  /// otherwise. Lengths on a grid of `grain`, ties to the first: the same in every pose.
+  std::uint32_t strip_piece(const PatchGraph& g, std::uint32_t f, double grain) const {
+    const std::vector<Half>& hs = g.faces[f];
+    const auto m = static_cast<std::uint32_t>(hs.size());
+    const auto is_rail = [&](std::uint32_t k) { return g.edges[hs[k].edge].rail; };
+    // Start at a boundary half that follows a rail.
+    std::uint32_t start = kNone;
+    for (std::uint32_t k = 0; k < m; ++k)
+      if (!is_rail(k) && is_rail((k + m - 1) % m)) {
+        start = k;
+        break;
+      }
+    if (start == kNone) return kNone;
+    std::vector<std::vector<std::uint32_t>> runs;
+    bool in_run = false;
+    for (std::uint32_t i = 0; i < m; ++i) {
+      const std::uint32_t k = (start + i) % m;
+      if (is_rail(k)) {
+        in_run = false;
+        continue;
+      }
+      if (!in_run) runs.emplace_back();
+      in_run = true;
+      runs.back().push_back(k);
+    }
+    if (runs.size() != 2) return kNone;
+    std::uint32_t count[2] = {0, 0};
+    for (int r = 0; r < 2; ++r)
+      for (std::uint32_t k : runs[static_cast<std::size_t>(r)]) count[r] += half_count(g, hs[k]);
+    if (count[0] == count[1]) return kNone;
+    const int fewer = count[0] < count[1] ? 0 : 1;
+    const auto piece_length = [&](const CEdge& c) {
+      const EdgeNodes& en = edges_[c.edge];
+      return (en.t[c.piece + 1] - en.t[c.piece]) * unit_length(c.edge);
+    };
+    // The other run's mean edge, which the new edges should not fall far below.
+    double other = 0.0;
+    for (std::uint32_t k : runs[static_cast<std::size_t>(1 - fewer)])
+      other += piece_length(g.edges[hs[k].edge]);
+    other /= count[1 - fewer];
+    std::uint32_t best = kNone;
+    long long best_len = -1;
+    for (std::uint32_t k : runs[static_cast<std::size_t>(fewer)]) {
+      const CEdge& c = g.edges[hs[k].edge];
+      // Only a free piece (of this patch alone) changes this face alone.
+      if (part_.edges[units_[c.edge].edge.index()].patches.size() != 1) continue;
+      const double len = piece_length(c) / (edges_[c.edge].count[c.piece] + 1);
+      if (len < kStripMatchRel * other) continue;
+      const long long q = std::llround(len / grain);
+      if (q > best_len) {
+        best = k;
+        best_len = q;
+      }
+    }
+    return best;
+  }
+
   // ---- 4. parity ---------------------------------------------------------------------------
   /// Pairs every face with an odd edge count with the nearest other odd face, or with a free
   /// boundary piece (the "ground": a free piece changes the count of one face only), through
@@ -1143,6 +1208,28 @@ class QuadBuilder {
     for (auto& a : adj)
       std::stable_sort(a.begin(), a.end(),
                        [](const Link& x, const Link& y) { return x.rank < y.rank; });
+    // A strip (two runs of boundary pieces, rails between them) whose runs differ in edge
+    // count takes its own extra edge on the run with fewer edges, in the piece whose edges stay
+    // longest: the runs then match, as a grid needs. Else the first free piece. (A thin ring
+    // whose outer arc has a B-Rep vertex inside a track: the vertex's two pieces of one edge
+    // each got the edge, three edges against one, worst corner 0.535; now two against two.)
+    const double grain = 1e-9 * part_.size;
+    for (std::uint32_t p = 0; p < part_.patches.size(); ++p) {
+      const PatchGraph& g = patches_[p];
+      for (std::uint32_t f = 0; f < g.faces.size(); ++f) {
+        const std::uint32_t take = strip_piece(g, f, grain);
+        if (take == kNone) continue;
+        auto& a = adj[offset[p] + f];
+        const Half h = g.faces[f][take];
+        const CEdge& c = g.edges[h.edge];
+        const auto it = std::find_if(a.begin(), a.end(), [&](const Link& l) {
+          return l.rank == 0 && l.a == c.edge && l.b == c.piece;
+        });
+        if (it == a.end()) continue;
+        std::rotate(a.begin(), it, it + 1);
+        if (face_count(g, f) % 2 != 0) ++result_.stats.parity_strips;
+      }
+    }
     std::vector<int> odd(nf + 1, 0);
     for (std::uint32_t p = 0; p < part_.patches.size(); ++p)
       for (std::uint32_t f = 0; f < patches_[p].faces.size(); ++f)

@@ -43,6 +43,8 @@ struct QuadStats {
   std::size_t fan_clusters = 0;    ///< MA nodes merged into a deeper one (merge_fan_clusters)
   std::size_t parity_boundary = 0;  ///< boundary pieces given one more edge for parity
   std::size_t parity_rails = 0;     ///< rail segments given one more edge for parity
+  /// odd strips whose run with fewer edges took their extra edge (docs/mesher.md, "Parity")
+  std::size_t parity_strips = 0;
   std::size_t edge_flips = 0;       ///< quad pairs re-split by flip_edges
   std::size_t cavity_refills = 0;   ///< cavities round bad quads filled again (refill_cavities)
   std::size_t loop_bridges = 0;     ///< loops no rail reached, joined by two bridge rails
