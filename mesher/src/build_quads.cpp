@@ -1096,8 +1096,8 @@ class QuadBuilder {
   /// the strip (cover_bosses' strips between its corner bosses and the outline).
   static constexpr double kStripMatchRel = 0.5;
 
-  /// For fix_parity: in face f of a strip's shape (exactly two runs of boundary pieces, the
-  /// rest rails) whose runs differ in edge count, the half of the run with fewer edges that is
+  /// For fix_parity: in face f of a strip's shape (two runs of boundary pieces and two runs
+  /// of rails with as many edges as each other) whose boundary runs differ in edge count, the half of the run with fewer edges that is
   /// a free piece (of this patch only) and whose edges stay longest with one more; kNone
   /// otherwise. Lengths on a grid of `grain`, ties to the first: the same in every pose.
   std::uint32_t strip_piece(const PatchGraph& g, std::uint32_t f, double grain) const {
@@ -1112,19 +1112,33 @@ class QuadBuilder {
         break;
       }
     if (start == kNone) return kNone;
+    // Its sides: runs of boundary pieces, and runs of rails (two rails meeting at a boundary
+    // node, a concave corner's fan, are two sides with an empty boundary side between).
     std::vector<std::vector<std::uint32_t>> runs;
-    bool in_run = false;
+    std::uint32_t rail_count[2] = {0, 0};
+    std::size_t rail_runs = 0;
+    bool in_run = false, in_rails = false;
     for (std::uint32_t i = 0; i < m; ++i) {
       const std::uint32_t k = (start + i) % m;
       if (is_rail(k)) {
+        const Half prev = hs[(k + m - 1) % m];
+        const CEdge& pc = g.edges[prev.edge];
+        const std::uint32_t joint = prev.reverse ? pc.a : pc.b;
+        if (in_rails && !g.nodes[joint].ma) return kNone;  // a fan's empty side: not a strip
+        if (!in_rails && ++rail_runs > 2) return kNone;
+        rail_count[rail_runs - 1] += half_count(g, hs[k]);
         in_run = false;
+        in_rails = true;
         continue;
       }
       if (!in_run) runs.emplace_back();
       in_run = true;
+      in_rails = false;
       runs.back().push_back(k);
     }
-    if (runs.size() != 2) return kNone;
+    // Two sides of boundary pieces, two of rails as long as each other: matching the
+    // boundary sides makes a grid.
+    if (runs.size() != 2 || rail_runs != 2 || rail_count[0] != rail_count[1]) return kNone;
     std::uint32_t count[2] = {0, 0};
     for (int r = 0; r < 2; ++r)
       for (std::uint32_t k : runs[static_cast<std::size_t>(r)]) count[r] += half_count(g, hs[k]);
