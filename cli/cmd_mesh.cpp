@@ -115,6 +115,7 @@ int run_mesh(const std::vector<std::string>& argv) {
     doc["narrow_fans_dropped"] = r.stats.narrow_fans;
     doc["fan_cluster_merges"] = r.stats.fan_clusters;
     doc["edge_flips"] = r.stats.edge_flips;
+    doc["thin_rows_merged"] = r.stats.thin_rows;
     doc["cavity_refills"] = r.stats.cavity_refills;
     doc["loop_bridges"] = r.stats.loop_bridges;
     doc["disk_patches"] = r.stats.disk_patches;

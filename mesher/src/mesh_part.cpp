@@ -124,6 +124,7 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
   r.mesh = std::move(quads.mesh);
   r.stats = quads.stats;
   r.stats.edge_flips = flip_edges(part, r.mesh);
+  r.stats.thin_rows = merge_thin_rows(part, r.mesh);
   r.times.quads = clock.lap();
   // The quads round the worst quads filled again where that beats what the smoothing alone
   // could do; before the smoothing, whose result differs between poses of a part (relaxation

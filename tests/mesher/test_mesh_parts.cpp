@@ -178,6 +178,15 @@ TEST_CASE("an odd strip takes its extra edge on the side with fewer edges", "[me
                    [](const MeshPartResult& r) { return r.stats.parity_strips > 0; });
 }
 
+TEST_CASE("a strip narrower than an element is one row of quads", "[mesh][rows]") {
+  // 30 x 0.3 at h = 1: rails from both sides meet the axis, two rows of 1 x 0.15 (aspect 6.6
+  // on 60 of 64 quads, worst corner 0.959). The rows merged: one row of 32 near-squares.
+  check_test_parts({{"thin_strip.json", 0.99}}, [](const MeshPartResult& r) {
+    return r.stats.thin_rows > 0 && r.quality.measures[1].bad_percent == 0.0 &&
+           r.mesh.elements.size() == 32;
+  });
+}
+
 TEST_CASE("the final untangling lifts the worst corners towards 0.75",
           "[mesh]") {
   // Its target went from 0.6 to 0.7 (kFinalUntangleTarget; 0.75 since session 12: cgal_hole

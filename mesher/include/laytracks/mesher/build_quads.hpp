@@ -46,6 +46,7 @@ struct QuadStats {
   /// odd strips whose run with fewer edges took their extra edge (docs/mesher.md, "Parity")
   std::size_t parity_strips = 0;
   std::size_t edge_flips = 0;       ///< quad pairs re-split by flip_edges
+  std::size_t thin_rows = 0;        ///< chains merged by merge_thin_rows
   std::size_t cavity_refills = 0;   ///< cavities round bad quads filled again (refill_cavities)
   std::size_t loop_bridges = 0;     ///< loops no rail reached, joined by two bridge rails
   std::size_t disk_patches = 0;     ///< patches whose rails all met at one point: one face
@@ -72,6 +73,15 @@ QuadResult build_quads(const Part& part, const CutGraph& graph, const QuadOption
 std::size_t flip_edges(const Part& part,
                        QuadMesh& mesh,
                        std::vector<std::uint32_t>* flipped = nullptr);
+
+/// Thin rows merged (docs/mesher.md, "Thin rows"), run after the flips: where a chain of edges
+/// runs along the middle of a strip from boundary to boundary (or round a ring) through
+/// interior nodes of four quads each, its edges at least twice as long as the rungs across
+/// it, the chain's nodes go (its end nodes too: on a straight boundary of one patch, no B-Rep
+/// vertex) and each pair of quads across it becomes one quad, when every merged quad is
+/// squarer than its pair and not worse in its worst corner by more than 0.05. Returns the
+/// chains merged.
+std::size_t merge_thin_rows(const Part& part, QuadMesh& mesh);
 
 /// Cavity re-fill (docs/mesher.md, "Cavity re-fill"), run after the flips and before the
 /// smoothing: round the worst quads below `below` of each patch (at most 32 + 1/50 of its
