@@ -479,32 +479,11 @@ std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations, do
         continue;
       }
       if (!alive[q]) continue;
-      MeshElement e;
-      for (std::size_t m = 0; m < 4; ++m) e.nodes[m] = pq.global[pq.quads[q][m]];
-      e.patch = PatchId(p);
-      e.shell = shell;
-      added.push_back(e);
+      added.push_back(element_of(pq, pq.quads[q], p, shell));
     }
   }
   if (kept == 0) return 0;
-  // The mesh without the cavities' quads and their inner nodes, in the order it had.
-  std::vector<MeshElement> elements;
-  for (std::size_t i = 0; i < mesh.elements.size(); ++i)
-    if (!drop[i]) elements.push_back(mesh.elements[i]);
-  elements.insert(elements.end(), added.begin(), added.end());
-  std::vector<std::uint32_t> renum(mesh.nodes.size(), kNew);
-  for (const MeshElement& e : elements)
-    for (std::uint32_t v : e.nodes) renum[v] = 0;
-  std::vector<Vec3> nodes;
-  for (std::size_t v = 0; v < mesh.nodes.size(); ++v) {
-    if (renum[v] == kNew) continue;
-    renum[v] = static_cast<std::uint32_t>(nodes.size());
-    nodes.push_back(mesh.nodes[v]);
-  }
-  for (MeshElement& e : elements)
-    for (std::uint32_t& v : e.nodes) v = renum[v];
-  mesh.nodes = std::move(nodes);
-  mesh.elements = std::move(elements);
+  replace_elements(mesh, drop, added);
   return kept;
 }
 

@@ -131,6 +131,37 @@ void parallel_for(std::size_t n, const std::function<void(std::size_t)>& fn) {
   if (error) std::rethrow_exception(error);
 }
 
+MeshElement element_of(const PatchQuads& pq, const std::array<std::uint32_t, 4>& q,
+                       std::size_t p, std::uint32_t shell) {
+  MeshElement e;
+  for (std::size_t m = 0; m < 4; ++m) e.nodes[m] = pq.global[q[m]];
+  e.patch = PatchId(static_cast<std::uint32_t>(p));
+  e.shell = shell;
+  return e;
+}
+
+void replace_elements(QuadMesh& mesh, const std::vector<bool>& drop,
+                      const std::vector<MeshElement>& added) {
+  constexpr std::uint32_t kUnused = 0xffffffffu;
+  std::vector<MeshElement> elements;
+  for (std::size_t i = 0; i < mesh.elements.size(); ++i)
+    if (!drop[i]) elements.push_back(mesh.elements[i]);
+  elements.insert(elements.end(), added.begin(), added.end());
+  std::vector<std::uint32_t> renum(mesh.nodes.size(), kUnused);
+  for (const MeshElement& e : elements)
+    for (std::uint32_t v : e.nodes) renum[v] = 0;
+  std::vector<Vec3> nodes;
+  for (std::size_t v = 0; v < mesh.nodes.size(); ++v) {
+    if (renum[v] == kUnused) continue;
+    renum[v] = static_cast<std::uint32_t>(nodes.size());
+    nodes.push_back(mesh.nodes[v]);
+  }
+  for (MeshElement& e : elements)
+    for (std::uint32_t& v : e.nodes) v = renum[v];
+  mesh.nodes = std::move(nodes);
+  mesh.elements = std::move(elements);
+}
+
 }  // namespace laytracks::mesher_detail
 
 namespace laytracks {

@@ -37,6 +37,16 @@ PatchQuads patch_quads(const Part& part,
                        const std::vector<std::uint32_t>& elements,
                        const std::vector<bool>& pinned);
 
+/// The mesh element of quad q over pq's local ids, on patch p, in `shell`.
+MeshElement element_of(const PatchQuads& pq, const std::array<std::uint32_t, 4>& q,
+                       std::size_t p, std::uint32_t shell);
+
+/// The mesh without the elements `drop` marks, with `added` after the rest (orders kept), and
+/// without the nodes that no element uses any more (the others renumbered in their order):
+/// how the passes that take quads out and put others in (re-fill, thin rows) finish.
+void replace_elements(QuadMesh& mesh, const std::vector<bool>& drop,
+                      const std::vector<MeshElement>& added);
+
 /// The threads a part's passes use: the environment's LAYTRACKS_THREADS (a whole number from
 /// 1) when set, else set_mesher_threads' count when set, else as many as the machine has. The
 /// output does not depend on it.

@@ -303,32 +303,10 @@ std::size_t merge_thin_rows(const Part& part, QuadMesh& mesh) {
     const std::uint32_t shell = mesh.elements[pq.elements.front()].shell;
     for (std::size_t q = 0; q < gone.size(); ++q)
       if (gone[q]) drop_element[pq.elements[q]] = true;
-    for (const Quad& q : merged) {
-      MeshElement e;
-      for (std::size_t k = 0; k < 4; ++k) e.nodes[k] = pq.global[q[k]];
-      e.patch = PatchId(static_cast<std::uint32_t>(p));
-      e.shell = shell;
-      added.push_back(e);
-    }
+    for (const Quad& q : merged) added.push_back(element_of(pq, q, p, shell));
   }
   if (chains == 0) return 0;
-  std::vector<MeshElement> elements;
-  for (std::size_t i = 0; i < mesh.elements.size(); ++i)
-    if (!drop_element[i]) elements.push_back(mesh.elements[i]);
-  elements.insert(elements.end(), added.begin(), added.end());
-  std::vector<std::uint32_t> renum(mesh.nodes.size(), kNone);
-  for (const MeshElement& e : elements)
-    for (std::uint32_t v : e.nodes) renum[v] = 0;
-  std::vector<Vec3> nodes;
-  for (std::size_t v = 0; v < mesh.nodes.size(); ++v) {
-    if (renum[v] == kNone) continue;
-    renum[v] = static_cast<std::uint32_t>(nodes.size());
-    nodes.push_back(mesh.nodes[v]);
-  }
-  for (MeshElement& e : elements)
-    for (std::uint32_t& v : e.nodes) v = renum[v];
-  mesh.nodes = std::move(nodes);
-  mesh.elements = std::move(elements);
+  replace_elements(mesh, drop_element, added);
   return chains;
 }
 
