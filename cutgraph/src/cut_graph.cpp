@@ -164,11 +164,7 @@ CutGraph build_cut_graph(const Part& part,
   layer.suppress(suppressed);
   layer.lay_sources();
   const auto count = [&] {
-    std::size_t n = 0;
-    for (const CorridorPiece& c : cutgraph_detail::corridor_pieces_impl(part, axes, graph, &cache)) {
-      n = std::max(n, c.corridor + 1);
-    }
-    return n;
+    return cutgraph_detail::find_corridors(part, axes, graph, &cache).count;
   };
   graph.corridor_count = count();
   if (tracks && options.lay_tracks) {

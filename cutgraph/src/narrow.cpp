@@ -76,7 +76,8 @@ void remove_narrow_corridors(const Part& part,
   // Deletions that far apart change none of each other's corridors, so the rounds delete what
   // one deletion per round would (tested against `one_per_round`), in far fewer rounds: an
   // icosphere of 1280 triangles needs the first (17 rounds; 135 by corridors alone), a torus
-  // of 24 x 12 quads, whose rails run round it, the second (2 rounds; 48 by patches alone). Bounded by the number of source points.
+  // of 24 x 12 quads, whose rails run round it, the second (2 rounds; 48 by patches alone).
+  // Bounded by the number of source points.
   for (std::size_t round = 0; round < 100000; ++round) {
     const Round r = lay_round(part, axes, track_width, suppressed, cache);
     const CutGraph& g = r.graph;
@@ -93,21 +94,16 @@ void remove_narrow_corridors(const Part& part,
     const auto key = [&](PatchId p, std::uint32_t loop, double u) {
       return loop_key(part, p, loop, u);
     };
-    std::vector<std::tuple<LoopKey, std::size_t, GCutId>> cut_at;
+    std::vector<std::pair<LoopKey, GCutId>> cut_at;
     cut_at.reserve(g.cuts.size());
-    for (std::size_t i = 0; i < g.cuts.size(); ++i) {
-      const CutVert& c = g.cuts[i];
-      cut_at.emplace_back(key(c.patch, c.at.loop, c.at.u()), i, c.g);
-    }
-    std::sort(cut_at.begin(), cut_at.end(), [](const auto& x, const auto& y) {
-      return std::tie(std::get<0>(x), std::get<1>(x)) < std::tie(std::get<0>(y), std::get<1>(y));
-    });
+    for (const CutVert& c : g.cuts) cut_at.emplace_back(key(c.patch, c.at.loop, c.at.u()), c.g);
+    std::stable_sort(cut_at.begin(), cut_at.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
     const auto cut_g = [&](const LoopKey& k) -> const GCutId* {
-      const auto it = std::upper_bound(cut_at.begin(), cut_at.end(), k, [](const LoopKey& x, const auto& y) {
-        return x < std::get<0>(y);
-      });
-      if (it == cut_at.begin() || std::get<0>(*std::prev(it)) != k) return nullptr;
-      return &std::get<2>(*std::prev(it));
+      const auto it = std::upper_bound(cut_at.begin(), cut_at.end(), k,
+                                       [](const LoopKey& x, const auto& y) { return x < y.first; });
+      if (it == cut_at.begin() || std::prev(it)->first != k) return nullptr;
+      return &std::prev(it)->second;
     };
     // Corridors (dense ids): width (longest CUT-SEG) and bounding break points.
     std::size_t corridors = 0;
@@ -289,7 +285,8 @@ void remove_narrow_corridors(const Part& part,
       for (std::size_t c : touched) {
         hold(seen_corridor, claims_at_corridor, c);
         for (std::uint32_t b : bounds[c])
-          for (std::size_t k : corridors_of_set[uf.find(b)]) hold(seen_corridor, claims_at_corridor, k);
+          for (std::size_t k : corridors_of_set[uf.find(b)])
+            hold(seen_corridor, claims_at_corridor, k);
       }
       if (waits) continue;  // a narrower corridor of the round is near: the next round
       for (std::uint32_t src : best) {

@@ -11,8 +11,8 @@ namespace laytracks::cutgraph_detail {
 
 /// Deletes source rails, round by round (in each, for every narrow corridor whose deletion is
 /// far from every narrower one's, by patches or by corridors; with `one_per_round`, for the
-/// narrowest only: the reference the rounds must agree with; narrow.cpp), until no corridor is narrower than
-/// `narrow_fraction` x `track_width(R)` (R: the longest rail bounding it, the radius at its
+/// narrowest only: the reference the rounds must agree with; narrow.cpp), until no corridor
+/// is narrower than `narrow_fraction` x `track_width(R)` (R: the longest rail bounding it, the radius at its
 /// branch point) except small features (a corridor bounded by a convex corner) and corridors
 /// whose only deletable rail is the last one at a concave vertex (counted in `kept`).
 /// `suppressed` receives the positions of the deleted source points, `deleted` a record each,

@@ -1097,10 +1097,13 @@ class QuadBuilder {
   static constexpr double kStripMatchRel = 0.5;
 
   /// For fix_parity: in face f of a strip's shape (two runs of boundary pieces and two runs
-  /// of rails with as many edges as each other) whose boundary runs differ in edge count, the half of the run with fewer edges that is
-  /// a free piece (of this patch only) and whose edges stay longest with one more; kNone
-  /// otherwise. Lengths on a grid of `grain`, ties to the first: the same in every pose.
-  std::uint32_t strip_piece(const PatchGraph& g, std::uint32_t f, double grain) const {
+  /// of rails with as many edges as each other) whose boundary runs differ in edge count, the
+  /// half of the run with fewer edges that is a free piece (`free_piece(edge, piece)`) and
+  /// whose edges stay longest with one more; kNone otherwise. Lengths on a grid of `grain`,
+  /// ties to the first: the same in every pose.
+  template <class FreePiece>
+  std::uint32_t strip_piece(const PatchGraph& g, std::uint32_t f, double grain,
+                            FreePiece free_piece) const {
     const std::vector<Half>& hs = g.faces[f];
     const auto m = static_cast<std::uint32_t>(hs.size());
     const auto is_rail = [&](std::uint32_t k) { return g.edges[hs[k].edge].rail; };
@@ -1157,8 +1160,7 @@ class QuadBuilder {
     long long best_len = -1;
     for (std::uint32_t k : runs[static_cast<std::size_t>(fewer)]) {
       const CEdge& c = g.edges[hs[k].edge];
-      // Only a free piece (of this patch alone) changes this face alone.
-      if (part_.edges[units_[c.edge].edge.index()].patches.size() != 1) continue;
+      if (!free_piece(c.edge, c.piece)) continue;  // only a free piece changes this face alone
       const double len = piece_length(c) / (edges_[c.edge].count[c.piece] + 1);
       if (len < kStripMatchRel * other) continue;
       const long long q = std::llround(len / grain);
@@ -1222,16 +1224,19 @@ class QuadBuilder {
     for (auto& a : adj)
       std::stable_sort(a.begin(), a.end(),
                        [](const Link& x, const Link& y) { return x.rank < y.rank; });
-    // A strip (two runs of boundary pieces, rails between them) whose runs differ in edge
-    // count takes its own extra edge on the run with fewer edges, in the piece whose edges stay
-    // longest: the runs then match, as a grid needs. Else the first free piece. (A thin ring
-    // whose outer arc has a B-Rep vertex inside a track: the vertex's two pieces of one edge
-    // each got the edge, three edges against one, worst corner 0.535; now two against two.)
+    // A strip (strip_piece) whose boundary runs differ in edge count takes its own extra edge
+    // on the run with fewer edges, in the piece whose edges stay longest: the runs then match,
+    // as a grid needs. Else the first free piece. (A thin ring whose outer arc has a B-Rep
+    // vertex inside a track: the vertex's two pieces of one edge each got the edge, three
+    // edges against one, worst corner 0.535; now two against two.)
+    const auto free_piece = [&](std::uint32_t e, std::uint32_t j) {
+      return piece_faces[e][j].size() == 1;
+    };
     const double grain = 1e-9 * part_.size;
     for (std::uint32_t p = 0; p < part_.patches.size(); ++p) {
       const PatchGraph& g = patches_[p];
       for (std::uint32_t f = 0; f < g.faces.size(); ++f) {
-        const std::uint32_t take = strip_piece(g, f, grain);
+        const std::uint32_t take = strip_piece(g, f, grain, free_piece);
         if (take == kNone) continue;
         auto& a = adj[offset[p] + f];
         const Half h = g.faces[f][take];

@@ -6,14 +6,14 @@
 // the chain's nodes go and each pair of quads across it becomes one quad.
 #include <algorithm>
 #include <cmath>
-#include <limits>
-#include <map>
 #include <optional>
 #include <utility>
 #include <vector>
 
 #include "laytracks/mesher/build_quads.hpp"
 #include "fill.hpp"
+#include "laytracks/mesher/check.hpp"
+#include "laytracks/mesher/quality.hpp"
 #include "patch_quads.hpp"
 
 namespace laytracks {
@@ -38,12 +38,10 @@ constexpr double kRowAspectOk = 3.0;
 /// between their two boundary edges at most this.
 constexpr double kStraightSine = 1e-9;
 
+/// Aspect ratio as quality.md defines it (measure_quad), of a quad in the patch's plane.
 double quad_aspect(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  const Vec2 d1 = 0.5 * (b + c) - 0.5 * (d + a);
-  const Vec2 d2 = 0.5 * (c + d) - 0.5 * (a + b);
-  const double l1 = norm(d1), l2 = norm(d2);
-  const double lo = std::min(l1, l2);
-  return lo > 0.0 ? std::max(l1, l2) / lo : std::numeric_limits<double>::infinity();
+  const auto up = [](Vec2 v) { return Vec3{v.x, v.y, 0.0}; };
+  return measure_quad({up(a), up(b), up(c), up(d)}, {0.0, 0.0, 1.0}).aspect_ratio;
 }
 
 class PatchRows {
@@ -54,10 +52,11 @@ class PatchRows {
       for (std::uint32_t v : pq_.quads[q]) around_[v].push_back(q);
   }
 
-  /// Merges every chain it can; returns the quads that went (`gone`) and the merged quads.
-  std::size_t run(std::vector<bool>& gone, std::vector<Quad>& merged, std::vector<bool>& dropped) {
+  /// Merges every chain it can; returns the count, the quads that went (`gone`) and the
+  /// merged quads.
+  std::size_t run(std::vector<bool>& gone, std::vector<Quad>& merged) {
     gone.assign(pq_.quads.size(), false);
-    dropped.assign(pq_.pos.size(), false);
+    std::vector<bool> dropped(pq_.pos.size(), false);
     std::size_t chains = 0;
     for (std::uint32_t v = 0; v < pq_.pos.size(); ++v) {
       if (dropped[v]) continue;
@@ -97,8 +96,8 @@ class PatchRows {
   bool share_quad(std::uint32_t v, std::uint32_t a, std::uint32_t b) const {
     for (std::uint32_t q : around_[v]) {
       const Quad& x = pq_.quads[q];
-      if (std::find(x.begin(), x.end(), a) != x.end() && std::find(x.begin(), x.end(), b) != x.end())
-        return true;
+      const auto has = [&](std::uint32_t n) { return std::find(x.begin(), x.end(), n) != x.end(); };
+      if (has(a) && has(b)) return true;
     }
     return false;
   }
@@ -124,16 +123,16 @@ class PatchRows {
     if (pq_.fixed[v] || around_[v].size() != 4) return std::nullopt;
     const std::vector<std::uint32_t> n = neighbours(v);
     if (n.size() != 4) return std::nullopt;
-    // Opposite pairs: neighbours with no quad in common at v.
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> opp;
-    for (std::size_t i = 0; i < 4; ++i)
-      for (std::size_t j = i + 1; j < 4; ++j)
-        if (!share_quad(v, n[i], n[j])) opp.emplace_back(n[i], n[j]);
-    if (opp.size() != 2) return std::nullopt;
+    const std::uint32_t across = opposite(v, n[0]);
+    if (across == kNone) return std::nullopt;
+    std::vector<std::uint32_t> rest;
+    for (std::uint32_t a : n)
+      if (a != n[0] && a != across) rest.push_back(a);
+    const std::pair<std::uint32_t, std::uint32_t> pairs[2] = {{n[0], across}, {rest[0], rest[1]}};
     const auto len = [&](std::uint32_t a) { return distance(pq_.pos[v], pq_.pos[a]); };
     for (int k = 0; k < 2; ++k) {
-      const auto& c = opp[static_cast<std::size_t>(k)];
-      const auto& r = opp[static_cast<std::size_t>(1 - k)];
+      const auto& c = pairs[k];
+      const auto& r = pairs[1 - k];
       const double rung = std::max(len(r.first), len(r.second));
       if (std::min(len(c.first), len(c.second)) >= kRowThinRatio * rung) return c;
     }
@@ -231,20 +230,21 @@ class PatchRows {
       const auto [p, q] = after(up, a);
       const auto [r, s] = after(down, b);
       const Quad nq{p, q, r, s};
-      const auto at = [&](std::uint32_t i2) { return pq_.pos[i2]; };
-      const double j_new = min_scaled_jacobian(at(nq[0]), at(nq[1]), at(nq[2]), at(nq[3]));
+      const auto jacobian = [&](const Quad& x) {
+        return min_scaled_jacobian(pq_.pos[x[0]], pq_.pos[x[1]], pq_.pos[x[2]], pq_.pos[x[3]]);
+      };
+      const auto aspect = [&](const Quad& x) {
+        return quad_aspect(pq_.pos[x[0]], pq_.pos[x[1]], pq_.pos[x[2]], pq_.pos[x[3]]);
+      };
       const Quad& u = pq_.quads[up];
       const Quad& d = pq_.quads[down];
-      const double j_old = std::min(min_scaled_jacobian(at(u[0]), at(u[1]), at(u[2]), at(u[3])),
-                                    min_scaled_jacobian(at(d[0]), at(d[1]), at(d[2]), at(d[3])));
-      const double a_new = quad_aspect(at(nq[0]), at(nq[1]), at(nq[2]), at(nq[3]));
-      const double a_old = std::min(quad_aspect(at(u[0]), at(u[1]), at(u[2]), at(u[3])),
-                                    quad_aspect(at(d[0]), at(d[1]), at(d[2]), at(d[3])));
-      // No merged quad worse than its pair in its worst corner, and each squarer
+      const double j_new = jacobian(nq), j_old = std::min(jacobian(u), jacobian(d));
+      const double a_new = aspect(nq), a_u = aspect(u), a_d = aspect(d);
+      // No merged quad worse than its pair in its worst corner, and each squarer than its pair
       // or square enough; the chain as a whole squarer.
-      if (j_new < j_old - kRowJacobianSlack || !(a_new < a_old || a_new <= kRowAspectOk)) return false;
-      worst_old = std::max(worst_old, std::max(quad_aspect(at(u[0]), at(u[1]), at(u[2]), at(u[3])),
-                                               quad_aspect(at(d[0]), at(d[1]), at(d[2]), at(d[3]))));
+      if (j_new < j_old - kRowJacobianSlack) return false;
+      if (!(a_new < std::min(a_u, a_d) || a_new <= kRowAspectOk)) return false;
+      worst_old = std::max({worst_old, a_u, a_d});
       worst_new = std::max(worst_new, a_new);
       pairs.emplace_back(up, down);
       made.push_back(nq);
@@ -269,7 +269,7 @@ std::size_t merge_thin_rows(const Part& part, QuadMesh& mesh) {
       if (patch_of[v] == kNone) patch_of[v] = e.patch.value;
       else if (patch_of[v] != e.patch.value) shared[v] = true;
     }
-  const double tol = 1e-9 * part.size;
+  const double tol = MeshTolerances::kOnBrep * part.size;  // at a vertex, as the check says
   std::vector<bool> vertex(mesh.nodes.size(), false);
   {
     // Nodes at B-Rep vertices, by sorted x.
@@ -295,9 +295,9 @@ std::size_t merge_thin_rows(const Part& part, QuadMesh& mesh) {
       removable[i] = pq.fixed[i] && !shared[g] && !vertex[g];
     }
     PatchRows rows(pq, removable);
-    std::vector<bool> gone, dropped;
+    std::vector<bool> gone;
     std::vector<Quad> merged;
-    const std::size_t n = rows.run(gone, merged, dropped);
+    const std::size_t n = rows.run(gone, merged);
     if (n == 0) continue;
     chains += n;
     const std::uint32_t shell = mesh.elements[pq.elements.front()].shell;

@@ -78,9 +78,9 @@ std::size_t flip_edges(const Part& part,
 /// runs along the middle of a strip from boundary to boundary (or round a ring) through
 /// interior nodes of four quads each, its edges at least twice as long as the rungs across
 /// it, the chain's nodes go (its end nodes too: on a straight boundary of one patch, no B-Rep
-/// vertex) and each pair of quads across it becomes one quad, when every merged quad is
-/// squarer than its pair and not worse in its worst corner by more than 0.05. Returns the
-/// chains merged.
+/// vertex) and each pair of quads across it becomes one quad, when no merged quad is worse in
+/// its worst corner than its pair (to rounding), each is squarer or at most 3 in aspect, and
+/// the chain's worst aspect falls. Returns the chains merged.
 std::size_t merge_thin_rows(const Part& part, QuadMesh& mesh);
 
 /// Cavity re-fill (docs/mesher.md, "Cavity re-fill"), run after the flips and before the
