@@ -44,21 +44,56 @@ double quad_aspect(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   return measure_quad({up(a), up(b), up(c), up(d)}, {0.0, 0.0, 1.0}).aspect_ratio;
 }
 
-class PatchRows {
+/// The quads of the whole mesh, for chains that may cross seams: a chain goes through an
+/// interior node of a patch, or through a node on a seam between two patches (no B-Rep
+/// vertex) with two quads of each round it; each pair of quads it merges is in one patch,
+/// and is measured in that patch's frame.
+class MeshRows {
  public:
-  PatchRows(PatchQuads& pq, const std::vector<bool>& removable)
-      : pq_(pq), removable_(removable), around_(pq.pos.size()) {
-    for (std::uint32_t q = 0; q < pq_.quads.size(); ++q)
-      for (std::uint32_t v : pq_.quads[q]) around_[v].push_back(q);
+  MeshRows(const Part& part, const QuadMesh& mesh, std::vector<bool> through,
+           const std::vector<bool>& removable)
+      : part_(part), mesh_(mesh), through_(through), removable_(removable),
+        around_(mesh.nodes.size()) {
+    for (std::uint32_t q = 0; q < mesh_.elements.size(); ++q)
+      if (mesh_.elements[q].is_quad())
+        for (std::uint32_t v : mesh_.elements[q].nodes) around_[v].push_back(q);
+    // Only where its four quads close round it, each edge at it in two of them, and (on a
+    // seam) two of them in each patch.
+    for (std::uint32_t v = 0; v < mesh_.nodes.size(); ++v) {
+      if (!through_[v]) continue;
+      if (around_[v].size() != 4) {
+        through_[v] = false;
+        continue;
+      }
+      std::vector<std::uint32_t> ends;
+      std::vector<std::uint32_t> patches;
+      for (std::uint32_t q : around_[v]) {
+        const Quad& x = quad(q);
+        for (std::size_t k = 0; k < 4; ++k)
+          if (x[k] == v) {
+            ends.push_back(x[(k + 1) % 4]);
+            ends.push_back(x[(k + 3) % 4]);
+          }
+        patches.push_back(mesh_.elements[q].patch.value);
+      }
+      std::sort(ends.begin(), ends.end());
+      std::sort(patches.begin(), patches.end());
+      bool closed = ends.size() == 8;
+      for (std::size_t i = 0; closed && i < 8; i += 2)
+        closed = ends[i] == ends[i + 1] && (i == 0 || ends[i] != ends[i - 1]);
+      const bool split = patches[0] == patches[3] || (patches[0] == patches[1] &&
+                                                      patches[2] == patches[3]);
+      through_[v] = closed && split;
+    }
   }
 
   /// Merges every chain it can; returns the count, the quads that went (`gone`) and the
   /// merged quads.
-  std::size_t run(std::vector<bool>& gone, std::vector<Quad>& merged) {
-    gone.assign(pq_.quads.size(), false);
-    std::vector<bool> dropped(pq_.pos.size(), false);
+  std::size_t run(std::vector<bool>& gone, std::vector<MeshElement>& merged) {
+    gone.assign(mesh_.elements.size(), false);
+    std::vector<bool> dropped(mesh_.nodes.size(), false);
     std::size_t chains = 0;
-    for (std::uint32_t v = 0; v < pq_.pos.size(); ++v) {
+    for (std::uint32_t v = 0; v < mesh_.nodes.size(); ++v) {
       if (dropped[v]) continue;
       const auto pair = chain_pair(v);
       if (!pair) continue;
@@ -66,7 +101,7 @@ class PatchRows {
       bool closed = false;
       if (!trace(v, *pair, chain, closed)) continue;
       std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-      std::vector<Quad> made;
+      std::vector<MeshElement> made;
       if (!merge(chain, closed, gone, pairs, made)) continue;
       for (const auto& [a, b] : pairs) gone[a] = gone[b] = true;
       for (std::uint32_t c : chain) dropped[c] = true;
@@ -77,11 +112,22 @@ class PatchRows {
   }
 
  private:
-  /// The neighbours of v along edges, when v is interior with four quads.
+  const Quad& quad(std::uint32_t q) const { return mesh_.elements[q].nodes; }
+
+  /// Node v of quad q in q's patch frame.
+  Vec2 at(std::uint32_t q, std::uint32_t v) const {
+    return part_.patches[mesh_.elements[q].patch.index()].frame.to_2d(mesh_.nodes[v]);
+  }
+
+  double length(std::uint32_t a, std::uint32_t b) const {
+    return distance(mesh_.nodes[a], mesh_.nodes[b]);
+  }
+
+  /// The neighbours of v along edges.
   std::vector<std::uint32_t> neighbours(std::uint32_t v) const {
     std::vector<std::uint32_t> n;
     for (std::uint32_t q : around_[v]) {
-      const Quad& x = pq_.quads[q];
+      const Quad& x = quad(q);
       for (std::size_t k = 0; k < 4; ++k)
         if (x[k] == v) {
           n.push_back(x[(k + 1) % 4]);
@@ -95,17 +141,17 @@ class PatchRows {
 
   bool share_quad(std::uint32_t v, std::uint32_t a, std::uint32_t b) const {
     for (std::uint32_t q : around_[v]) {
-      const Quad& x = pq_.quads[q];
+      const Quad& x = quad(q);
       const auto has = [&](std::uint32_t n) { return std::find(x.begin(), x.end(), n) != x.end(); };
       if (has(a) && has(b)) return true;
     }
     return false;
   }
 
-  /// The neighbour of interior node v (four quads) opposite `from`: where a chain through v
-  /// goes on; kNone when v is no such node.
+  /// The neighbour of a node a chain may pass (`through_`: four quads round it) opposite
+  /// `from`: where a chain through v goes on; kNone when v is no such node.
   std::uint32_t opposite(std::uint32_t v, std::uint32_t from) const {
-    if (pq_.fixed[v] || around_[v].size() != 4) return kNone;
+    if (!through_[v] || around_[v].size() != 4) return kNone;
     const std::vector<std::uint32_t> n = neighbours(v);
     if (n.size() != 4 || std::find(n.begin(), n.end(), from) == n.end()) return kNone;
     std::uint32_t out = kNone;
@@ -117,10 +163,10 @@ class PatchRows {
     return out;
   }
 
-  /// For an interior node of valence four: its two opposite neighbours along the chain (the
-  /// pair whose edges are kRowThinRatio x longer than the other pair's), if any.
+  /// For a node a chain may pass: its two opposite neighbours along the chain (the pair whose
+  /// edges are kRowThinRatio x longer than the other pair's), if any.
   std::optional<std::pair<std::uint32_t, std::uint32_t>> chain_pair(std::uint32_t v) const {
-    if (pq_.fixed[v] || around_[v].size() != 4) return std::nullopt;
+    if (!through_[v] || around_[v].size() != 4) return std::nullopt;
     const std::vector<std::uint32_t> n = neighbours(v);
     if (n.size() != 4) return std::nullopt;
     const std::uint32_t across = opposite(v, n[0]);
@@ -129,7 +175,7 @@ class PatchRows {
     for (std::uint32_t a : n)
       if (a != n[0] && a != across) rest.push_back(a);
     const std::pair<std::uint32_t, std::uint32_t> pairs[2] = {{n[0], across}, {rest[0], rest[1]}};
-    const auto len = [&](std::uint32_t a) { return distance(pq_.pos[v], pq_.pos[a]); };
+    const auto len = [&](std::uint32_t a) { return length(v, a); };
     for (int k = 0; k < 2; ++k) {
       const auto& c = pairs[k];
       const auto& r = pairs[1 - k];
@@ -139,13 +185,13 @@ class PatchRows {
     return std::nullopt;
   }
 
-  /// A boundary node that may go with a chain's end: removable, in two quads of this patch
-  /// (the pair across the chain's last edge), on a straight stretch of boundary.
+  /// A boundary node that may go with a chain's end: removable, in two quads (of one patch:
+  /// the pair across the chain's last edge), on a straight stretch of boundary.
   bool end_goes(std::uint32_t e, std::uint32_t from) const {
     if (!removable_[e] || around_[e].size() != 2) return false;
     std::vector<std::uint32_t> others;
     for (std::uint32_t q : around_[e]) {
-      const Quad& x = pq_.quads[q];
+      const Quad& x = quad(q);
       for (std::size_t k = 0; k < 4; ++k)
         if (x[k] == e) {
           for (std::uint32_t o : {x[(k + 1) % 4], x[(k + 3) % 4]})
@@ -153,7 +199,9 @@ class PatchRows {
         }
     }
     if (others.size() != 2) return false;
-    const Vec2 a = pq_.pos[others[0]] - pq_.pos[e], b = pq_.pos[others[1]] - pq_.pos[e];
+    const std::uint32_t q = around_[e].front();
+    const Vec2 pe = at(q, e);
+    const Vec2 a = at(q, others[0]) - pe, b = at(q, others[1]) - pe;
     const double s = cross(a, b);
     return dot(a, b) < 0.0 && s * s <= kStraightSine * kStraightSine * dot(a, a) * dot(b, b);
   }
@@ -178,7 +226,7 @@ class PatchRows {
           break;
         }
         half[side].push_back(cur);
-        if (half[side].size() > pq_.pos.size()) return false;
+        if (half[side].size() > mesh_.nodes.size()) return false;
         prev = cur;
         cur = next;
       }
@@ -192,18 +240,32 @@ class PatchRows {
     if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return false;
     // A thin strip all along: every interior node thin across (its chain edges kRowThinRatio x
     // its rungs), but for the one next to each end (a strip's end: the rung there is as long
-    // as the chain edge to the boundary).
-    const std::size_t first = closed ? 0 : 2, last = closed ? chain.size() : chain.size() - 2;
-    for (std::size_t i = first; i < last; ++i)
-      if (!chain_pair(chain[i])) return false;
+    // as the chain edge to the boundary), and those whose rungs are kRowThinRatio x shorter
+    // than the chain's median edge (where the chain's edges shorten, at a strip's end inside
+    // it: the corner of a box's thin walls).
+    const std::size_t m = chain.size();
+    const std::size_t edges = closed ? m : m - 1;
+    std::vector<double> along;
+    for (std::size_t i = 0; i < edges; ++i) along.push_back(length(chain[i], chain[(i + 1) % m]));
+    std::nth_element(along.begin(), along.begin() + static_cast<std::ptrdiff_t>(edges / 2), along.end());
+    const double median = along[edges / 2];
+    const std::size_t first = closed ? 0 : 2, last = closed ? m : m - 2;
+    for (std::size_t i = first; i < last; ++i) {
+      if (chain_pair(chain[i])) continue;
+      const std::uint32_t prev = chain[(i + m - 1) % m], next = chain[(i + 1) % m];
+      double rung = 0.0;
+      for (std::uint32_t a : neighbours(chain[i]))
+        if (a != prev && a != next) rung = std::max(rung, length(chain[i], a));
+      if (rung * kRowThinRatio > median) return false;
+    }
     return true;
   }
 
-  /// The quad of q's nodes after removing the chain edge (a, b) it holds: its other two
-  /// nodes, in its counter-clockwise order after b.
+  /// Each pair of quads across a chain edge (in one patch) as one quad: its four other nodes.
+  /// False when a merged quad would be worse than its pair, or the chain no squarer.
   bool merge(const std::vector<std::uint32_t>& chain, bool closed, const std::vector<bool>& gone,
              std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
-             std::vector<Quad>& made) const {
+             std::vector<MeshElement>& made) const {
     const std::size_t m = chain.size();
     const std::size_t edges = closed ? m : m - 1;
     if (edges == 0) return false;
@@ -213,16 +275,18 @@ class PatchRows {
       // The two quads holding edge (a, b): one has it as a -> b, the other as b -> a.
       std::uint32_t up = kNone, down = kNone;
       for (std::uint32_t q : around_[a]) {
-        const Quad& x = pq_.quads[q];
+        const Quad& x = quad(q);
         for (std::size_t k = 0; k < 4; ++k) {
           if (x[k] == a && x[(k + 1) % 4] == b) up = q;
           if (x[k] == b && x[(k + 1) % 4] == a) down = q;
         }
       }
       if (up == kNone || down == kNone || gone[up] || gone[down]) return false;
+      // A chain edge along a seam: its two quads are in two planes.
+      if (mesh_.elements[up].patch != mesh_.elements[down].patch) return false;
       // up: a, b, p, q (counter-clockwise); down: b, a, r, s.
       const auto after = [&](std::uint32_t q, std::uint32_t from) {
-        const Quad& x = pq_.quads[q];
+        const Quad& x = quad(q);
         std::size_t k = 0;
         while (x[k] != from) ++k;
         return std::make_pair(x[(k + 2) % 4], x[(k + 3) % 4]);
@@ -230,14 +294,15 @@ class PatchRows {
       const auto [p, q] = after(up, a);
       const auto [r, s] = after(down, b);
       const Quad nq{p, q, r, s};
+      // All in up's patch frame (the pair's patch).
       const auto jacobian = [&](const Quad& x) {
-        return min_scaled_jacobian(pq_.pos[x[0]], pq_.pos[x[1]], pq_.pos[x[2]], pq_.pos[x[3]]);
+        return min_scaled_jacobian(at(up, x[0]), at(up, x[1]), at(up, x[2]), at(up, x[3]));
       };
       const auto aspect = [&](const Quad& x) {
-        return quad_aspect(pq_.pos[x[0]], pq_.pos[x[1]], pq_.pos[x[2]], pq_.pos[x[3]]);
+        return quad_aspect(at(up, x[0]), at(up, x[1]), at(up, x[2]), at(up, x[3]));
       };
-      const Quad& u = pq_.quads[up];
-      const Quad& d = pq_.quads[down];
+      const Quad& u = quad(up);
+      const Quad& d = quad(down);
       const double j_new = jacobian(nq), j_old = std::min(jacobian(u), jacobian(d));
       const double a_new = aspect(nq), a_u = aspect(u), a_d = aspect(d);
       // No merged quad worse than its pair in its worst corner, and each squarer than its pair
@@ -247,12 +312,16 @@ class PatchRows {
       worst_old = std::max({worst_old, a_u, a_d});
       worst_new = std::max(worst_new, a_new);
       pairs.emplace_back(up, down);
-      made.push_back(nq);
+      MeshElement e = mesh_.elements[up];
+      e.nodes = nq;
+      made.push_back(e);
     }
     return worst_new < worst_old;
   }
 
-  PatchQuads& pq_;
+  const Part& part_;
+  const QuadMesh& mesh_;
+  std::vector<bool> through_;  ///< nodes a chain may pass
   const std::vector<bool>& removable_;
   std::vector<std::vector<std::uint32_t>> around_;
 };
@@ -261,11 +330,14 @@ class PatchRows {
 
 std::size_t merge_thin_rows(const Part& part, QuadMesh& mesh) {
   const std::vector<bool> pinned = pinned_nodes(mesh);
-  // A boundary node may go when only one patch uses it and it is no B-Rep vertex.
+  // The patches round each node: one (kNone when none), or `shared`.
   std::vector<std::uint32_t> patch_of(mesh.nodes.size(), kNone);
   std::vector<bool> shared(mesh.nodes.size(), false);
+  std::vector<std::uint32_t> quads_at(mesh.nodes.size(), 0);
   for (const MeshElement& e : mesh.elements)
     for (std::uint32_t v : e.nodes) {
+      if (v == MeshElement::kNoNode) continue;
+      ++quads_at[v];
       if (patch_of[v] == kNone) patch_of[v] = e.patch.value;
       else if (patch_of[v] != e.patch.value) shared[v] = true;
     }
@@ -282,31 +354,21 @@ std::size_t merge_thin_rows(const Part& part, QuadMesh& mesh) {
         if (distance(mesh.nodes[it->second], pv.position) <= tol) vertex[it->second] = true;
     }
   }
-  const std::vector<std::vector<std::uint32_t>> by_patch = elements_by_patch(part, mesh);
-  std::vector<bool> drop_element(mesh.elements.size(), false);
-  std::vector<MeshElement> added;
-  std::size_t chains = 0;
-  for (std::size_t p = 0; p < part.patches.size(); ++p) {
-    if (by_patch[p].empty()) continue;
-    PatchQuads pq = patch_quads(part, mesh, p, by_patch[p], pinned);
-    std::vector<bool> removable(pq.pos.size(), false);
-    for (std::size_t i = 0; i < pq.pos.size(); ++i) {
-      const std::uint32_t g = pq.global[i];
-      removable[i] = pq.fixed[i] && !shared[g] && !vertex[g];
-    }
-    PatchRows rows(pq, removable);
-    std::vector<bool> gone;
-    std::vector<Quad> merged;
-    const std::size_t n = rows.run(gone, merged);
-    if (n == 0) continue;
-    chains += n;
-    const std::uint32_t shell = mesh.elements[pq.elements.front()].shell;
-    for (std::size_t q = 0; q < gone.size(); ++q)
-      if (gone[q]) drop_element[pq.elements[q]] = true;
-    for (const Quad& q : merged) added.push_back(element_of(pq, q, p, shell));
+  // A chain passes a patch's interior node, or a node of a seam between two patches (pinned
+  // because it is shared; MeshRows checks that its quads close round it, two in each patch);
+  // a boundary node used by one patch, no B-Rep vertex, may go with a chain's end.
+  std::vector<bool> through(mesh.nodes.size(), false), removable(mesh.nodes.size(), false);
+  for (std::uint32_t v = 0; v < mesh.nodes.size(); ++v) {
+    if (vertex[v]) continue;
+    through[v] = quads_at[v] == 4 && (!pinned[v] || shared[v]);
+    removable[v] = pinned[v] && !shared[v];
   }
+  MeshRows rows(part, mesh, std::move(through), removable);
+  std::vector<bool> gone;
+  std::vector<MeshElement> merged;
+  const std::size_t chains = rows.run(gone, merged);
   if (chains == 0) return 0;
-  replace_elements(mesh, drop_element, added);
+  replace_elements(mesh, gone, merged);
   return chains;
 }
 

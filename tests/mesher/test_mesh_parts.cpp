@@ -187,6 +187,17 @@ TEST_CASE("a strip narrower than an element is one row of quads", "[mesh][rows]"
   });
 }
 
+TEST_CASE("a thin wall round a box is one row of quads, across its seams", "[mesh][rows]") {
+  // Walls 0.1 and 0.15 high at h = 0.5, closed round the box by its four corner seams: a
+  // chain along the middle of the walls never meets a free end, and it shortens at each corner
+  // (the walls' ends). Two rows before (aspect >= 5 on 16% and 34% of the quads); one row, the
+  // chain's seam nodes gone from both walls at each corner.
+  check_test_parts({{"thin_walls_box.json", 0.79}, {"low_rim_tray.json", 0.86}},
+                   [](const MeshPartResult& r) {
+                     return r.stats.thin_rows > 0 && r.quality.measures[1].bad_percent == 0.0;
+                   });
+}
+
 TEST_CASE("the final untangling lifts the worst corners towards 0.75",
           "[mesh]") {
   // Its target went from 0.6 to 0.7 (kFinalUntangleTarget; 0.75 since session 12: cgal_hole
