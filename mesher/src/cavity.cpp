@@ -49,6 +49,8 @@ constexpr int kRefillSweeps = 4;
 constexpr std::size_t kRefillBatch = 8;
 constexpr std::size_t kRefillParallelQuads = 500;
 constexpr std::uint32_t kNew = 0xffffffffu;
+/// Nodes of at least this many quads are poles: their star is a cavity of its own.
+constexpr std::size_t kPoleValence = 6;
 
 class PatchRefill {
  public:
@@ -65,12 +67,15 @@ class PatchRefill {
 
   /// Tries a re-fill round every quad below `below_`, worst first; after the first pass,
   /// only round quads near a node that the pass before moved or made. Returns the count kept.
-  std::size_t run(int pass) {
+  /// `poles`: the pass after the others, which tries the poles' cavities only (pole_plan), round
+  /// every quad still below `below_`.
+  std::size_t run(int pass, bool poles = false) {
     std::vector<std::pair<double, std::uint32_t>> bad;
     for (std::uint32_t q = 0; q < pq_.quads.size(); ++q) {
       if (!alive_[q]) continue;
       const double j = jacobian(pq_.quads[q]);
-      if (j < below_ && (pass == 0 || near_change(q, pass - 1))) bad.emplace_back(settled(j), q);
+      if (j < below_ && (pass == 0 || poles || near_change(q, pass - 1)))
+        bad.emplace_back(settled(j), q);
     }
     std::sort(bad.begin(), bad.end());
     const std::size_t limit = kRefillFirst + pq_.quads.size() / kRefillShare;
@@ -84,7 +89,7 @@ class PatchRefill {
     for (std::size_t first = 0; first < bad.size(); first += batch) {
       const std::size_t count = std::min(batch, bad.size() - first);
       std::vector<Attempt> tries(count);
-      const auto evaluate = [&](std::size_t i) { tries[i] = attempt(bad[first + i].second); };
+      const auto evaluate = [&](std::size_t i) { tries[i] = attempt(bad[first + i].second, poles); };
       parallel_for(count, evaluate);
       ++batch_id_;
       bool wrote = false;
@@ -92,7 +97,7 @@ class PatchRefill {
         Attempt& t = tries[i];
         if (wrote && std::any_of(t.reads.begin(), t.reads.end(),
                                  [&](std::uint32_t v) { return written_[v] == batch_id_; }))
-          t = attempt(bad[first + i].second);
+          t = attempt(bad[first + i].second, poles);
         if (!t.log.empty()) std::fputs(t.log.c_str(), stderr);
         if (!t.plan) continue;
         commit(*t.plan, pass);
@@ -243,14 +248,46 @@ class PatchRefill {
     std::vector<std::uint32_t> reads;  ///< the nodes whose positions or quads it may have read
     std::string log;                   ///< LAYTRACKS_DEBUG_CAVITY lines
   };
-  Attempt attempt(std::uint32_t q) const {
+  Attempt attempt(std::uint32_t q, bool poles) const {
     Attempt t;
     t.reads = reach(q);
     if (!alive_[q] || jacobian(pq_.quads[q]) >= below_) return t;
+    if (poles) {
+      t.plan = pole_plan(q, t.log);
+      return t;
+    }
     // The quads across its edges first (the smallest change), then those at its nodes, then
     // those at the nodes of those.
     for (int kind = 0; kind < 3 && !t.plan; ++kind) t.plan = plan_cavity(cavity_of(q, kind), t.log);
     return t;
+  }
+
+  /// A pole: the node of q's worst corner when many quads meet there (kPoleValence), each
+  /// corner there narrow (12 sectors of 30 degrees: 0.5 at best). No cavity round q alone
+  /// takes that node out; the quads round it, alone and then with the quads at their nodes,
+  /// filled again can (arcs__scallop12: 0.499 -> 0.829).
+  std::optional<Plan> pole_plan(std::uint32_t q, std::string& log) const {
+    const Quad& x = pq_.quads[q];
+    std::uint32_t pole = kNew;
+    double worst = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < 4; ++k) {
+      const double c =
+          corner_jacobian(pq_.pos[x[k]], pq_.pos[x[(k + 1) % 4]], pq_.pos[x[(k + 3) % 4]]);
+      if (c < worst) {
+        worst = c;
+        pole = x[k];
+      }
+    }
+    if (pq_.fixed[pole] || around_[pole].size() < kPoleValence) return std::nullopt;
+    std::vector<std::uint32_t> star = around_[pole];
+    std::sort(star.begin(), star.end());
+    if (std::optional<Plan> plan = plan_cavity(star, log)) return plan;
+    std::vector<std::uint32_t> wide;
+    for (std::uint32_t r : star)
+      for (std::uint32_t v : pq_.quads[r]) wide.insert(wide.end(), around_[v].begin(), around_[v].end());
+    std::sort(wide.begin(), wide.end());
+    wide.erase(std::unique(wide.begin(), wide.end()), wide.end());
+    return plan_cavity(wide, log);
   }
 
   /// What an attempt round q reads: the nodes of the quads at the nodes of the quads at the
@@ -447,11 +484,13 @@ std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations, do
     r.pq = patch_quads(part, mesh, p, by_patch[p], pinned);
     if (r.pq.quads.empty()) return;
     PatchRefill refill(r.pq, iterations, below, inner && r.pq.quads.size() >= kRefillParallelQuads);
-    for (int pass = 0; pass < kRefillPasses; ++pass) {
+    int pass = 0;
+    for (; pass < kRefillPasses; ++pass) {
       const std::size_t more = refill.run(pass);
       r.kept += more;
       if (more == 0) break;
     }
+    r.kept += refill.run(pass, true);
     if (r.kept > 0) r.alive = refill.alive();
   });
   std::size_t kept = 0;

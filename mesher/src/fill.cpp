@@ -48,13 +48,8 @@ Vec2 LocalFrame::to_patch(Vec2 q) const {
 double min_scaled_jacobian(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   const Vec2 p[4] = {a, b, c, d};
   double worst = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < 4; ++i) {
-    const Vec2 e1 = p[(i + 1) % 4] - p[i];
-    const Vec2 e0 = p[(i + 3) % 4] - p[i];
-    const double l2 = dot(e1, e1) * dot(e0, e0);  // one square root, not two hypot calls
-    const double j = l2 > 0.0 ? cross(e1, e0) / std::sqrt(l2) : -1.0;
-    worst = std::min(worst, j);
-  }
+  for (int i = 0; i < 4; ++i)
+    worst = std::min(worst, corner_jacobian(p[i], p[(i + 1) % 4], p[(i + 3) % 4]));
   return worst;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -83,6 +84,15 @@ class LocalFrame {
 /// LocalFrame's grid: 2^-20 of the polygon's mean edge; far below any size a mesh cares about,
 /// far above rounding.
 constexpr double kLocalGrid = 1.0 / 1048576.0;
+
+/// The scaled Jacobian of a quad's corner at `at`, between its edges to `next` and `prev`
+/// (counter-clockwise > 0); -1 at a zero-length edge.
+inline double corner_jacobian(Vec2 at, Vec2 next, Vec2 prev) {
+  const Vec2 e1 = next - at;
+  const Vec2 e0 = prev - at;
+  const double l2 = dot(e1, e1) * dot(e0, e0);  // one square root, not two hypot calls
+  return l2 > 0.0 ? cross(e1, e0) / std::sqrt(l2) : -1.0;
+}
 
 /// Smallest scaled Jacobian over the four corners of quad abcd (counter-clockwise > 0).
 double min_scaled_jacobian(Vec2 a, Vec2 b, Vec2 c, Vec2 d);

@@ -198,6 +198,16 @@ TEST_CASE("a thin wall round a box is one row of quads, across its seams", "[mes
                    });
 }
 
+TEST_CASE("where the sectors of twelve arcs meet at one node, the pole is filled again",
+          "[mesh][cavity]") {
+  // A plate bounded by twelve concave arcs: each arc's fan reaches the centre, where twelve
+  // quads met with corners of 30 degrees (0.499). The pole pass fills the star of that node
+  // again (0.829).
+  check_test_parts({{"scallop12.json", 0.75}}, [](const MeshPartResult& r) {
+    return r.stats.cavity_refills > 0;
+  });
+}
+
 TEST_CASE("the final untangling lifts the worst corners towards 0.75",
           "[mesh]") {
   // Its target went from 0.6 to 0.7 (kFinalUntangleTarget; 0.75 since session 12: cgal_hole
