@@ -81,9 +81,9 @@ class MeshRows {
       bool closed = ends.size() == 8;
       for (std::size_t i = 0; closed && i < 8; i += 2)
         closed = ends[i] == ends[i + 1] && (i == 0 || ends[i] != ends[i - 1]);
-      const bool split = patches[0] == patches[3] || (patches[0] == patches[1] &&
-                                                      patches[2] == patches[3]);
-      through_[v] = closed && split;
+      const bool one_patch = patches[0] == patches[3];
+      const bool split = one_patch || (patches[0] == patches[1] && patches[2] == patches[3]);
+      through_[v] = closed && split && (one_patch || straight_seam(v));
     }
   }
 
@@ -113,6 +113,29 @@ class MeshRows {
 
  private:
   const Quad& quad(std::uint32_t q) const { return mesh_.elements[q].nodes; }
+
+  /// Whether seam node v's two neighbours along the seam (those of edges in quads of both
+  /// patches) lie on a straight line through it: a node of an arc's chords may not go, or the
+  /// seam would leave the arc (a plate split by an arc seam is two coplanar patches).
+  bool straight_seam(std::uint32_t v) const {
+    std::vector<std::uint32_t> along;
+    for (std::uint32_t q : around_[v]) {
+      const Quad& x = quad(q);
+      for (std::size_t k = 0; k < 4; ++k)
+        if (x[k] == v)
+          for (std::uint32_t o : {x[(k + 1) % 4], x[(k + 3) % 4]})
+            for (std::uint32_t r : around_[v])
+              if (mesh_.elements[r].patch != mesh_.elements[q].patch &&
+                  std::find(quad(r).begin(), quad(r).end(), o) != quad(r).end())
+                along.push_back(o);
+    }
+    std::sort(along.begin(), along.end());
+    along.erase(std::unique(along.begin(), along.end()), along.end());
+    if (along.size() != 2) return false;
+    const Vec3 a = mesh_.nodes[along[0]] - mesh_.nodes[v], b = mesh_.nodes[along[1]] - mesh_.nodes[v];
+    const Vec3 c = cross(a, b);
+    return dot(a, b) < 0.0 && dot(c, c) <= kStraightSine * kStraightSine * dot(a, a) * dot(b, b);
+  }
 
   /// Node v of quad q in q's patch frame.
   Vec2 at(std::uint32_t q, std::uint32_t v) const {
