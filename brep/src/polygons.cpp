@@ -199,6 +199,83 @@ void check_hole_placement(const BuildState& s, std::size_t p) {
   }
 }
 
+/// Pieces each chord of an arc is cut into for check_arc_circles: 8 pieces come within 1/64 of
+/// the chord's sagitta (sagitta grows with the square of the angle), so within chord_tol / 64
+/// of the circle.
+constexpr std::size_t kCircleCheckPieces = 8;
+
+/// Refuses a patch whose arcs, as circles, meet another edge or arc. The loops checked by
+/// check_segments() run along the arcs' chords, but the mesh puts its nodes on the circles (the
+/// boundary follows the arc): an edge that passes between a chord and its circle, or another
+/// arc's circle that does, would give quads outside the patch. Each chord is replaced by
+/// kCircleCheckPieces pieces on the circle and the loops are checked again, exactly, as polygons.
+void check_arc_circles(const BuildState& s, std::size_t p) {
+  if (s.patch_arcs[p].empty()) return;
+  const Frame& frame = s.part.patches[p].frame;
+  Loops2 fine(s.loops2d[p].size());
+  std::vector<std::vector<std::int64_t>> arc_of(fine.size());  // fine segment -> arc, or -1
+  for (std::size_t l = 0; l < fine.size(); ++l) {
+    const Chain& chain = s.chains[p][l];
+    const std::vector<Vec2>& loop = s.loops2d[p][l];
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      fine[l].push_back(loop[i]);
+      const std::int64_t a = chain.seg_arc[i];
+      if (a < 0) {
+        arc_of[l].push_back(-1);
+        continue;
+      }
+      // The angles of the chord's ends on the arc's circle, from its `from` point.
+      const ArcInfo& arc = s.arcs[static_cast<std::size_t>(a)];
+      const Vec3 e1 = normalized(s.part.vertices[arc.from.index()].position - arc.center);
+      const Vec3 e2 = cross(arc.axis, e1);
+      const auto angle = [&](VertexId v) {
+        if (v == arc.from) return 0.0;
+        if (v == arc.to) return arc.span;
+        const Vec3 d = s.part.vertices[v.index()].position - arc.center;
+        const double t = std::atan2(dot(d, e2), dot(d, e1));
+        return t < 0.0 ? t + 2.0 * kPi : t;
+      };
+      const double t0 = angle(chain.vertices[i]);
+      const double t1 = angle(chain.vertices[(i + 1) % loop.size()]);
+      for (std::size_t k = 1; k < kCircleCheckPieces; ++k) {
+        const double t = t0 + (t1 - t0) * static_cast<double>(k) / kCircleCheckPieces;
+        fine[l].push_back(
+            frame.to_2d(arc.center + arc.radius * (std::cos(t) * e1 + std::sin(t) * e2)));
+      }
+      arc_of[l].insert(arc_of[l].end(), kCircleCheckPieces, a);
+    }
+  }
+  std::vector<SegmentRef> segments;
+  std::vector<Box2> boxes;
+  segment_boxes(fine, segments, boxes);
+  std::optional<Conflict> first;
+  for (const auto& [i, j] : overlapping_boxes(boxes)) {
+    const auto c = conflict(fine, segments[i], segments[j]);
+    if (!c) continue;
+    if (!first || precedes(c->first, first->first) ||
+        (!precedes(first->first, c->first) && precedes(c->second, first->second))) {
+      first = c;
+    }
+  }
+  if (!first) return;
+  // The arc, and what it meets: another arc or an edge of a loop.
+  const std::int64_t a1 = arc_of[first->first.loop][first->first.index];
+  const std::int64_t a2 = arc_of[first->second.loop][first->second.index];
+  const std::int64_t arc = a1 >= 0 ? a1 : a2;
+  const SegmentRef other = a1 >= 0 ? first->second : first->first;
+  const std::int64_t other_arc = a1 >= 0 ? a2 : a1;
+  const std::string what = other_arc >= 0 && other_arc != arc
+                               ? arc_name(s, static_cast<std::size_t>(other_arc)) + " of " +
+                                     loop_name(other.loop)
+                           : other_arc == arc ? "itself"
+                                              : "an edge of " + loop_name(other.loop);
+  fail(patch_name(s, p) + ": " + arc_name(s, static_cast<std::size_t>(arc)) +
+       ", as a circle, meets " + what + " near " +
+       point(frame.to_3d(first->where), s.part.size) +
+       " (between the points that discretise it, within the chord tolerance " +
+       len(s, s.part.chord_tol) + " of its chords)");
+}
+
 }  // namespace
 
 void check_polygons(const BuildState& s) {
@@ -206,6 +283,7 @@ void check_polygons(const BuildState& s) {
     for (std::size_t l = 0; l < s.loops2d[p].size(); ++l) check_area(s, p, l);
     check_segments(s, p);
     check_hole_placement(s, p);
+    check_arc_circles(s, p);
   }
 }
 

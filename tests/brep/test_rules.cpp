@@ -306,6 +306,24 @@ TEST_CASE("rule 8: loops are simple and holes lie strictly inside, apart", "[bre
     const RawPart raw = square_with_holes({{2, 2, 0}, {4, 4, 0}, {3, 3, 0}}, {{4, 5, 6}});
     CHECK_THAT(error_of(raw), Contains("loop 1 (a hole) has zero area"));
   }
+  SECTION("an arc whose circle crosses an edge between the points that discretise it") {
+    // A strip split by an arc seam that bulges right through (15.2, 0.15): its circle dips
+    // 0.006 below y = 0 near x = 15.04. At a chord tolerance of 0.05 its three chords stay
+    // above y = 0 (the loops are simple), but the mesh puts its nodes on the circle.
+    RawPart raw = make_part({{0, 0, 0}, {15, 0, 0}, {15, 0.3, 0}, {0, 0.3, 0}, {30, 0, 0},
+                             {30, 0.3, 0}},
+                            {patch("left", {{0, 1, 2, 3}}), patch("right", {{1, 4, 5, 2}})});
+    raw.arcs.push_back({1, 2, {15.2, 0.15, 0}});
+    BuildOptions options;
+    options.chord_tol = 0.05;
+    CHECK_THAT(error_of(raw, options),
+               Contains("patch \"right\" (index 1): arc 0 (edge 1-2), as a circle, meets an "
+                        "edge of the outer loop near (15.08") &&
+                   Contains("chord tolerance"));
+    // Without the arc's dip the same strip is a part.
+    raw.arcs[0].via = {15.1, 0.15, 0};
+    CHECK_NOTHROW(build_part(raw, options));
+  }
   SECTION("a hole that crosses itself, on a tilted patch") {
     RawPart raw = square_with_holes({{2, 2, 0}, {6, 2, 0}, {2, 6, 0}, {6, 7, 0}}, {{4, 5, 6, 7}});
     for (Vec3& v : raw.vertices) v = {v.x, v.y * 0.6, v.y * 0.8};
