@@ -89,7 +89,9 @@ class PatchRefill {
     for (std::size_t first = 0; first < bad.size(); first += batch) {
       const std::size_t count = std::min(batch, bad.size() - first);
       std::vector<Attempt> tries(count);
-      const auto evaluate = [&](std::size_t i) { tries[i] = attempt(bad[first + i].second, poles); };
+      const auto evaluate = [&](std::size_t i) {
+        tries[i] = attempt(bad[first + i].second, poles);
+      };
       parallel_for(count, evaluate);
       ++batch_id_;
       bool wrote = false;
@@ -284,7 +286,8 @@ class PatchRefill {
     if (std::optional<Plan> plan = plan_cavity(star, log)) return plan;
     std::vector<std::uint32_t> wide;
     for (std::uint32_t r : star)
-      for (std::uint32_t v : pq_.quads[r]) wide.insert(wide.end(), around_[v].begin(), around_[v].end());
+      for (std::uint32_t v : pq_.quads[r])
+        wide.insert(wide.end(), around_[v].begin(), around_[v].end());
     std::sort(wide.begin(), wide.end());
     wide.erase(std::unique(wide.begin(), wide.end()), wide.end());
     return plan_cavity(wide, log);

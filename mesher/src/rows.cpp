@@ -119,20 +119,17 @@ class MeshRows {
   /// seam would leave the arc (a plate split by an arc seam is two coplanar patches).
   bool straight_seam(std::uint32_t v) const {
     std::vector<std::uint32_t> along;
-    for (std::uint32_t q : around_[v]) {
-      const Quad& x = quad(q);
-      for (std::size_t k = 0; k < 4; ++k)
-        if (x[k] == v)
-          for (std::uint32_t o : {x[(k + 1) % 4], x[(k + 3) % 4]})
-            for (std::uint32_t r : around_[v])
-              if (mesh_.elements[r].patch != mesh_.elements[q].patch &&
-                  std::find(quad(r).begin(), quad(r).end(), o) != quad(r).end())
-                along.push_back(o);
+    for (std::uint32_t o : neighbours(v)) {
+      // The two quads at edge (v, o), in two patches for a seam edge.
+      std::vector<std::uint32_t> patches;
+      for (std::uint32_t q : around_[v])
+        if (std::find(quad(q).begin(), quad(q).end(), o) != quad(q).end())
+          patches.push_back(mesh_.elements[q].patch.value);
+      if (patches.size() == 2 && patches[0] != patches[1]) along.push_back(o);
     }
-    std::sort(along.begin(), along.end());
-    along.erase(std::unique(along.begin(), along.end()), along.end());
     if (along.size() != 2) return false;
-    const Vec3 a = mesh_.nodes[along[0]] - mesh_.nodes[v], b = mesh_.nodes[along[1]] - mesh_.nodes[v];
+    const Vec3 a = mesh_.nodes[along[0]] - mesh_.nodes[v];
+    const Vec3 b = mesh_.nodes[along[1]] - mesh_.nodes[v];
     const Vec3 c = cross(a, b);
     return dot(a, b) < 0.0 && dot(c, c) <= kStraightSine * kStraightSine * dot(a, a) * dot(b, b);
   }
@@ -174,9 +171,9 @@ class MeshRows {
   /// The neighbour of a node a chain may pass (`through_`: four quads round it) opposite
   /// `from`: where a chain through v goes on; kNone when v is no such node.
   std::uint32_t opposite(std::uint32_t v, std::uint32_t from) const {
-    if (!through_[v] || around_[v].size() != 4) return kNone;
+    if (!through_[v]) return kNone;
     const std::vector<std::uint32_t> n = neighbours(v);
-    if (n.size() != 4 || std::find(n.begin(), n.end(), from) == n.end()) return kNone;
+    if (std::find(n.begin(), n.end(), from) == n.end()) return kNone;
     std::uint32_t out = kNone;
     for (std::uint32_t a : n)
       if (a != from && !share_quad(v, a, from)) {
@@ -189,9 +186,8 @@ class MeshRows {
   /// For a node a chain may pass: its two opposite neighbours along the chain (the pair whose
   /// edges are kRowThinRatio x longer than the other pair's), if any.
   std::optional<std::pair<std::uint32_t, std::uint32_t>> chain_pair(std::uint32_t v) const {
-    if (!through_[v] || around_[v].size() != 4) return std::nullopt;
-    const std::vector<std::uint32_t> n = neighbours(v);
-    if (n.size() != 4) return std::nullopt;
+    if (!through_[v]) return std::nullopt;
+    const std::vector<std::uint32_t> n = neighbours(v);  // four: its quads close round it
     const std::uint32_t across = opposite(v, n[0]);
     if (across == kNone) return std::nullopt;
     std::vector<std::uint32_t> rest;
@@ -270,8 +266,9 @@ class MeshRows {
     const std::size_t edges = closed ? m : m - 1;
     std::vector<double> along;
     for (std::size_t i = 0; i < edges; ++i) along.push_back(length(chain[i], chain[(i + 1) % m]));
-    std::nth_element(along.begin(), along.begin() + static_cast<std::ptrdiff_t>(edges / 2), along.end());
-    const double median = along[edges / 2];
+    const auto middle = along.begin() + static_cast<std::ptrdiff_t>(edges / 2);
+    std::nth_element(along.begin(), middle, along.end());
+    const double median = *middle;
     const std::size_t first = closed ? 0 : 2, last = closed ? m : m - 2;
     for (std::size_t i = first; i < last; ++i) {
       if (chain_pair(chain[i])) continue;
