@@ -1510,9 +1510,14 @@ QuadResult build_quads(const Part& part, const CutGraph& graph, const QuadOption
 std::size_t flip_edges(const Part& part, QuadMesh& mesh, std::vector<std::uint32_t>* flipped) {
   std::size_t flips = 0;
   const std::size_t nq = mesh.elements.size();
+  // Settled (rounded to kJacobianGrain): two diagonals whose worst corners are equal but for
+  // rounding (two corners of one value in a symmetric hexagon) are a tie, which the first
+  // wins in every pose; unrounded, the pose's rounding chose (a random star scaled by 1e3
+  // flipped the other diagonal, and its re-fill and count followed).
   auto jacobian = [&](const Frame& frame, const std::array<std::uint32_t, 4>& x) {
-    return mesher_detail::min_scaled_jacobian(frame.to_2d(mesh.nodes[x[0]]), frame.to_2d(mesh.nodes[x[1]]),
-                                              frame.to_2d(mesh.nodes[x[2]]), frame.to_2d(mesh.nodes[x[3]]));
+    return mesher_detail::settled(mesher_detail::min_scaled_jacobian(
+        frame.to_2d(mesh.nodes[x[0]]), frame.to_2d(mesh.nodes[x[1]]),
+        frame.to_2d(mesh.nodes[x[2]]), frame.to_2d(mesh.nodes[x[3]])));
   };
   for (int pass = 0; pass < kFlipPasses; ++pass) {
     // The quads at each node (compressed rows), and every quad's worst corner.

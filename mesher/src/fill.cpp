@@ -37,7 +37,10 @@ LocalFrame::LocalFrame(const std::vector<Vec2>& pos, const std::vector<std::uint
 Vec2 LocalFrame::to_local(Vec2 p) const {
   const Vec2 d = p - origin_;
   const Vec2 q{(d.x * ux_.x + d.y * ux_.y) / scale_, (d.y * ux_.x - d.x * ux_.y) / scale_};
-  return {std::round(q.x / kLocalGrid) * kLocalGrid, std::round(q.y / kLocalGrid) * kLocalGrid};
+  // + 0.0: -0 (a point a hair below an axis in one pose) is 0, as in every other pose
+  // (atan2 and the order of ties tell -0 from 0).
+  return {std::round(q.x / kLocalGrid) * kLocalGrid + 0.0,
+          std::round(q.y / kLocalGrid) * kLocalGrid + 0.0};
 }
 
 Vec2 LocalFrame::to_patch(Vec2 q) const {
