@@ -952,6 +952,12 @@ class QuadBuilder {
         if (uf.find(v) != main) loose = uf.find(v);
       if (loose == kNone) return;
       // Candidate bridges: a loose boundary node to any node of another set, nearest first.
+      // Lengths settled on a grid of kSamePointRel x the part's size: in a symmetric part many
+      // bridges are as long as one another but for rounding, and the nearest (then the least
+      // node ids) must be the same in every pose (manyv__wavy400_hole scaled by 1e-3 bridged
+      // its hole elsewhere, and its two large faces and count followed).
+      const double grain = kSamePointRel * part_.size;
+      const auto settle = [&](double x) { return std::round(x / grain); };
       struct Bridge {
         double length;
         std::uint32_t a, b;
@@ -960,7 +966,8 @@ class QuadBuilder {
       for (std::uint32_t a = 0; a < g.nodes.size(); ++a) {
         if (uf.find(a) != loose || g.nodes[a].ma) continue;
         for (std::uint32_t b = 0; b < g.nodes.size(); ++b)
-          if (uf.find(b) != loose) all.push_back({distance(g.nodes[a].p, g.nodes[b].p), a, b});
+          if (uf.find(b) != loose)
+            all.push_back({settle(distance(g.nodes[a].p, g.nodes[b].p)), a, b});
       }
       std::sort(all.begin(), all.end(), [](const Bridge& x, const Bridge& y) {
         return x.length != y.length ? x.length < y.length : std::tie(x.a, x.b) < std::tie(y.a, y.b);
@@ -983,7 +990,7 @@ class QuadBuilder {
       for (std::size_t k = 0; k < all.size(); ++k) {
         const Bridge& br = all[k];
         if (br.a == first->a || br.b == first->b) continue;
-        order.push_back({br.length - distance(g.nodes[br.a].p, g.nodes[first->a].p), k});
+        order.push_back({br.length - settle(distance(g.nodes[br.a].p, g.nodes[first->a].p)), k});
       }
       std::sort(order.begin(), order.end());
       const Bridge* second = nullptr;
