@@ -272,9 +272,10 @@ class PatchRefill {
     const Quad& x = pq_.quads[q];
     std::uint32_t pole = kNew;
     double worst = std::numeric_limits<double>::infinity();
+    // Settled: of two corners equal but for rounding, the first in every pose.
     for (std::size_t k = 0; k < 4; ++k) {
-      const double c =
-          corner_jacobian(pq_.pos[x[k]], pq_.pos[x[(k + 1) % 4]], pq_.pos[x[(k + 3) % 4]]);
+      const double c = settled(
+          corner_jacobian(pq_.pos[x[k]], pq_.pos[x[(k + 1) % 4]], pq_.pos[x[(k + 3) % 4]]));
       if (c < worst) {
         worst = c;
         pole = x[k];
