@@ -129,9 +129,8 @@ void segment_boxes(const Loops2& loops,
   }
 }
 
-/// Refuses the first (in loop order) pair of segments of patch p that meet where they must not.
-void check_segments(const BuildState& s, std::size_t p) {
-  const Loops2& loops = s.loops2d[p];
+/// The first (in loop order) pair of segments of the loops that meet where they must not.
+std::optional<Conflict> first_conflict(const Loops2& loops) {
   std::vector<SegmentRef> segments;
   std::vector<Box2> boxes;
   segment_boxes(loops, segments, boxes);
@@ -144,7 +143,13 @@ void check_segments(const BuildState& s, std::size_t p) {
       first = c;
     }
   }
-  if (first) fail(describe(s, p, *first));
+  return first;
+}
+
+/// Refuses the first (in loop order) pair of segments of patch p that meet where they must not.
+void check_segments(const BuildState& s, std::size_t p) {
+  if (const std::optional<Conflict> first = first_conflict(s.loops2d[p]))
+    fail(describe(s, p, *first));
 }
 
 /// Exact ray-crossing test: does the ray from p towards +x cross segment ab (half-open rule)?
@@ -245,18 +250,7 @@ void check_arc_circles(const BuildState& s, std::size_t p) {
       arc_of[l].insert(arc_of[l].end(), kCircleCheckPieces, a);
     }
   }
-  std::vector<SegmentRef> segments;
-  std::vector<Box2> boxes;
-  segment_boxes(fine, segments, boxes);
-  std::optional<Conflict> first;
-  for (const auto& [i, j] : overlapping_boxes(boxes)) {
-    const auto c = conflict(fine, segments[i], segments[j]);
-    if (!c) continue;
-    if (!first || precedes(c->first, first->first) ||
-        (!precedes(first->first, c->first) && precedes(c->second, first->second))) {
-      first = c;
-    }
-  }
+  const std::optional<Conflict> first = first_conflict(fine);
   if (!first) return;
   // The arc, and what it meets: another arc or an edge of a loop.
   const std::int64_t a1 = arc_of[first->first.loop][first->first.index];

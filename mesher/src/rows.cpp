@@ -65,18 +65,9 @@ class MeshRows {
         through_[v] = false;
         continue;
       }
-      std::vector<std::uint32_t> ends;
+      const std::vector<std::uint32_t> ends = edge_ends(v);
       std::vector<std::uint32_t> patches;
-      for (std::uint32_t q : around_[v]) {
-        const Quad& x = quad(q);
-        for (std::size_t k = 0; k < 4; ++k)
-          if (x[k] == v) {
-            ends.push_back(x[(k + 1) % 4]);
-            ends.push_back(x[(k + 3) % 4]);
-          }
-        patches.push_back(mesh_.elements[q].patch.value);
-      }
-      std::sort(ends.begin(), ends.end());
+      for (std::uint32_t q : around_[v]) patches.push_back(mesh_.elements[q].patch.value);
       std::sort(patches.begin(), patches.end());
       bool closed = ends.size() == 8;
       for (std::size_t i = 0; closed && i < 8; i += 2)
@@ -143,8 +134,8 @@ class MeshRows {
     return distance(mesh_.nodes[a], mesh_.nodes[b]);
   }
 
-  /// The neighbours of v along edges.
-  std::vector<std::uint32_t> neighbours(std::uint32_t v) const {
+  /// The other ends of the edges at v, once per quad that holds the edge, sorted.
+  std::vector<std::uint32_t> edge_ends(std::uint32_t v) const {
     std::vector<std::uint32_t> n;
     for (std::uint32_t q : around_[v]) {
       const Quad& x = quad(q);
@@ -155,6 +146,12 @@ class MeshRows {
         }
     }
     std::sort(n.begin(), n.end());
+    return n;
+  }
+
+  /// The neighbours of v along edges.
+  std::vector<std::uint32_t> neighbours(std::uint32_t v) const {
+    std::vector<std::uint32_t> n = edge_ends(v);
     n.erase(std::unique(n.begin(), n.end()), n.end());
     return n;
   }
