@@ -6,7 +6,8 @@
 // face borders, are taken out as one polygon (a cavity: its boundary has an even edge count,
 // as any union of quads has) and filled again by the face templates; the new quads are
 // relaxed with the quads round the cavity, and kept only when their worst beats that of the
-// old quads relaxed the same way.
+// old quads relaxed the same way. A last pass takes the stars of poles (interior nodes of many
+// quads, where a quad's worst corner is) as cavities.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
