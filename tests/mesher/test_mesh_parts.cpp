@@ -252,6 +252,15 @@ TEST_CASE("a pole is the same node in every pose", "[mesh][pose][cavity]") {
   }
 }
 
+TEST_CASE("an arc's rails converging on the axis meet at one node", "[mesh][fans]") {
+  // An obround strap 60 x 20 with an obround slot 26 x 6: the rails of the strap's end arcs
+  // converge on the axis near the arcs' centres, at MA nodes 0.25-0.35 h apart, each wedge
+  // between two of them a cluster of slivers (worst corner 0.461; Gmsh 0.708). Merged from
+  // kFanClusterArc = 0.35 h where all rails start on arcs: 0.753.
+  check_test_parts({{"slotted_strap.json", 0.72}},
+                   [](const MeshPartResult& r) { return r.stats.fan_clusters > 0; });
+}
+
 TEST_CASE("the final untangling lifts the worst corners towards 0.75",
           "[mesh]") {
   // Its target went from 0.6 to 0.7 (kFinalUntangleTarget; 0.75 since session 12: cgal_hole
