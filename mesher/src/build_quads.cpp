@@ -965,14 +965,12 @@ class QuadBuilder {
         if (uf.find(v) != main) loose = uf.find(v);
       if (loose == kNone) return;
       // Candidate bridges: a loose boundary node to any node of another set, nearest first.
-      // Lengths settled on a grid of kSamePointRel x the part's size: in a symmetric part many
-      // bridges are as long as one another but for rounding, and the nearest (then the least
-      // node ids) must be the same in every pose (manyv__wavy400_hole scaled by 1e-3 bridged
-      // its hole elsewhere, and its two large faces and count followed).
-      const double grain = kSamePointRel * part_.size;
-      const auto settle = [&](double x) { return std::round(x / grain); };
+      // Lengths settled (settled_length): in a symmetric part many bridges are as long as one
+      // another but for rounding, and the nearest (then the least node ids) must be the same
+      // in every pose (manyv__wavy400_hole scaled by 1e-3 bridged its hole elsewhere, and its
+      // two large faces and count followed).
       struct Bridge {
-        double length;
+        long long length;
         std::uint32_t a, b;
       };
       std::vector<Bridge> all;
@@ -980,7 +978,7 @@ class QuadBuilder {
         if (uf.find(a) != loose || g.nodes[a].ma) continue;
         for (std::uint32_t b = 0; b < g.nodes.size(); ++b)
           if (uf.find(b) != loose)
-            all.push_back({settle(distance(g.nodes[a].p, g.nodes[b].p)), a, b});
+            all.push_back({settled_length(distance(g.nodes[a].p, g.nodes[b].p)), a, b});
       }
       std::sort(all.begin(), all.end(), [](const Bridge& x, const Bridge& y) {
         return x.length != y.length ? x.length < y.length : std::tie(x.a, x.b) < std::tie(y.a, y.b);
@@ -999,11 +997,12 @@ class QuadBuilder {
       if (!first) break;
       // The second: the clear one (not at the first's ends) that is shortest for its distance
       // from the first's foot.
-      std::vector<std::pair<double, std::size_t>> order;  // (score, index in all), best first
+      std::vector<std::pair<long long, std::size_t>> order;  // (score, index in all), best first
       for (std::size_t k = 0; k < all.size(); ++k) {
         const Bridge& br = all[k];
         if (br.a == first->a || br.b == first->b) continue;
-        order.push_back({br.length - settle(distance(g.nodes[br.a].p, g.nodes[first->a].p)), k});
+        order.push_back(
+            {br.length - settled_length(distance(g.nodes[br.a].p, g.nodes[first->a].p)), k});
       }
       std::sort(order.begin(), order.end());
       const Bridge* second = nullptr;
@@ -1116,14 +1115,19 @@ class QuadBuilder {
   /// the strip (cover_bosses' strips between its corner bosses and the outline).
   static constexpr double kStripMatchRel = 0.5;
 
+  /// A length on a grid of kSamePointRel x the part's size: lengths equal but for rounding
+  /// (a symmetric part's) compare equal in every pose, and their ties go by ids.
+  long long settled_length(double length) const {
+    return std::llround(length / (kSamePointRel * part_.size));
+  }
+
   /// For fix_parity: in face f of a strip's shape (two runs of boundary pieces and two runs
   /// of rails with as many edges as each other) whose boundary runs differ in edge count, the
   /// half of the run with fewer edges that is a free piece (`free_piece(edge, piece)`) and
-  /// whose edges stay longest with one more; kNone otherwise. Lengths on a grid of `grain`,
-  /// ties to the first: the same in every pose.
+  /// whose edges stay longest with one more; kNone otherwise. Lengths settled
+  /// (settled_length), ties to the first: the same in every pose.
   template <class FreePiece>
-  std::uint32_t strip_piece(const PatchGraph& g, std::uint32_t f, double grain,
-                            FreePiece free_piece) const {
+  std::uint32_t strip_piece(const PatchGraph& g, std::uint32_t f, FreePiece free_piece) const {
     const std::vector<Half>& hs = g.faces[f];
     const auto m = static_cast<std::uint32_t>(hs.size());
     const auto is_rail = [&](std::uint32_t k) { return g.edges[hs[k].edge].rail; };
@@ -1183,7 +1187,7 @@ class QuadBuilder {
       if (!free_piece(c.edge, c.piece)) continue;  // only a free piece changes this face alone
       const double len = piece_length(c) / (edges_[c.edge].count[c.piece] + 1);
       if (len < kStripMatchRel * other) continue;
-      const long long q = std::llround(len / grain);
+      const long long q = settled_length(len);
       if (q > best_len) {
         best = k;
         best_len = q;
@@ -1252,11 +1256,10 @@ class QuadBuilder {
     const auto free_piece = [&](std::uint32_t e, std::uint32_t j) {
       return piece_faces[e][j].size() == 1;
     };
-    const double grain = 1e-9 * part_.size;
     for (std::uint32_t p = 0; p < part_.patches.size(); ++p) {
       const PatchGraph& g = patches_[p];
       for (std::uint32_t f = 0; f < g.faces.size(); ++f) {
-        const std::uint32_t take = strip_piece(g, f, grain, free_piece);
+        const std::uint32_t take = strip_piece(g, f, free_piece);
         if (take == kNone) continue;
         auto& a = adj[offset[p] + f];
         const Half h = g.faces[f][take];

@@ -142,18 +142,20 @@ class PatchRefill {
     return bound;
   }
 
+  /// The quads at the nodes of `quads`, sorted.
+  std::vector<std::uint32_t> quads_at_nodes_of(const std::vector<std::uint32_t>& quads) const {
+    std::vector<std::uint32_t> c;
+    for (std::uint32_t r : quads)
+      for (std::uint32_t v : pq_.quads[r]) c.insert(c.end(), around_[v].begin(), around_[v].end());
+    std::sort(c.begin(), c.end());
+    c.erase(std::unique(c.begin(), c.end()), c.end());
+    return c;
+  }
+
   /// Quad q with its neighbours across its edges (kind 0) or at its nodes (kind 1), or the
   /// quads at the nodes of those (kind 2), sorted.
   std::vector<std::uint32_t> cavity_of(std::uint32_t q, int kind) const {
-    if (kind == 2) {
-      std::vector<std::uint32_t> c;
-      for (std::uint32_t r : cavity_of(q, 1))
-        for (std::uint32_t v : pq_.quads[r])
-          c.insert(c.end(), around_[v].begin(), around_[v].end());
-      std::sort(c.begin(), c.end());
-      c.erase(std::unique(c.begin(), c.end()), c.end());
-      return c;
-    }
+    if (kind == 2) return quads_at_nodes_of(cavity_of(q, 1));
     std::vector<std::uint32_t> c{q};
     const Quad& x = pq_.quads[q];
     for (std::size_t k = 0; k < 4; ++k) {
@@ -286,13 +288,7 @@ class PatchRefill {
     std::vector<std::uint32_t> star = around_[pole];
     std::sort(star.begin(), star.end());
     if (std::optional<Plan> plan = plan_cavity(star, log)) return plan;
-    std::vector<std::uint32_t> wide;
-    for (std::uint32_t r : star)
-      for (std::uint32_t v : pq_.quads[r])
-        wide.insert(wide.end(), around_[v].begin(), around_[v].end());
-    std::sort(wide.begin(), wide.end());
-    wide.erase(std::unique(wide.begin(), wide.end()), wide.end());
-    return plan_cavity(wide, log);
+    return plan_cavity(quads_at_nodes_of(star), log);
   }
 
   /// What an attempt round q reads: the nodes of the quads at the nodes of the quads at the

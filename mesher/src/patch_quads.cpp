@@ -15,12 +15,9 @@ namespace {
 constexpr std::uint32_t kUnset = 0xffffffffu;
 }  // namespace
 
-std::vector<bool> pinned_nodes(const QuadMesh& mesh) {
-  const std::size_t nn = mesh.nodes.size();
-  std::vector<std::uint32_t> patch_of(nn, kUnset);
-  std::vector<bool> pinned(nn, false);
-  std::vector<std::uint64_t> edges;
-  edges.reserve(4 * mesh.elements.size());
+std::vector<bool> shared_nodes(const QuadMesh& mesh) {
+  std::vector<std::uint32_t> patch_of(mesh.nodes.size(), kUnset);
+  std::vector<bool> shared(mesh.nodes.size(), false);
   for (const MeshElement& e : mesh.elements) {
     const std::size_t corners = e.is_quad() ? 4 : 3;
     for (std::size_t k = 0; k < corners; ++k) {
@@ -28,7 +25,20 @@ std::vector<bool> pinned_nodes(const QuadMesh& mesh) {
       if (patch_of[v] == kUnset)
         patch_of[v] = e.patch.value;
       else if (patch_of[v] != e.patch.value)
-        pinned[v] = true;
+        shared[v] = true;
+    }
+  }
+  return shared;
+}
+
+std::vector<bool> pinned_nodes(const QuadMesh& mesh) {
+  std::vector<bool> pinned = shared_nodes(mesh);
+  std::vector<std::uint64_t> edges;
+  edges.reserve(4 * mesh.elements.size());
+  for (const MeshElement& e : mesh.elements) {
+    const std::size_t corners = e.is_quad() ? 4 : 3;
+    for (std::size_t k = 0; k < corners; ++k) {
+      const std::uint32_t v = e.nodes[k];
       const auto [a, b] = std::minmax(v, e.nodes[(k + 1) % corners]);
       edges.push_back(std::uint64_t{a} << 32 | b);
     }

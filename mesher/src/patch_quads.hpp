@@ -12,6 +12,9 @@
 
 namespace laytracks::mesher_detail {
 
+/// The nodes used by elements of several patches (seams).
+std::vector<bool> shared_nodes(const QuadMesh& mesh);
+
 /// The nodes that no pass may move or remove: nodes used by elements of several patches, and
 /// nodes on a mesh edge that only one element uses (a free edge, or a patch's boundary).
 std::vector<bool> pinned_nodes(const QuadMesh& mesh);

@@ -347,17 +347,7 @@ class MeshRows {
 
 std::size_t merge_thin_rows(const Part& part, QuadMesh& mesh) {
   const std::vector<bool> pinned = pinned_nodes(mesh);
-  // The patches round each node: one (kNone when none), or `shared`.
-  std::vector<std::uint32_t> patch_of(mesh.nodes.size(), kNone);
-  std::vector<bool> shared(mesh.nodes.size(), false);
-  std::vector<std::uint32_t> quads_at(mesh.nodes.size(), 0);
-  for (const MeshElement& e : mesh.elements)
-    for (std::uint32_t v : e.nodes) {
-      if (v == MeshElement::kNoNode) continue;
-      ++quads_at[v];
-      if (patch_of[v] == kNone) patch_of[v] = e.patch.value;
-      else if (patch_of[v] != e.patch.value) shared[v] = true;
-    }
+  const std::vector<bool> shared = shared_nodes(mesh);
   const double tol = MeshTolerances::kOnBrep * part.size;  // at a vertex, as the check says
   std::vector<bool> vertex(mesh.nodes.size(), false);
   {
@@ -377,7 +367,7 @@ std::size_t merge_thin_rows(const Part& part, QuadMesh& mesh) {
   std::vector<bool> through(mesh.nodes.size(), false), removable(mesh.nodes.size(), false);
   for (std::uint32_t v = 0; v < mesh.nodes.size(); ++v) {
     if (vertex[v]) continue;
-    through[v] = quads_at[v] == 4 && (!pinned[v] || shared[v]);
+    through[v] = !pinned[v] || shared[v];  // MeshRows keeps those of four quads round them
     removable[v] = pinned[v] && !shared[v];
   }
   MeshRows rows(part, mesh, std::move(through), removable);
