@@ -114,6 +114,7 @@ int run_mesh(const std::vector<std::string>& argv) {
       doc["faces_by_template"][kTemplateNames[k]] = r.stats.by_template[k];
     doc["narrow_fans_dropped"] = r.stats.narrow_fans;
     doc["fan_cluster_merges"] = r.stats.fan_clusters;
+    doc["smooth_vertex_feet"] = r.stats.smooth_vertex_feet;
     doc["edge_flips"] = r.stats.edge_flips;
     doc["thin_rows_merged"] = r.stats.thin_rows;
     doc["cavity_refills"] = r.stats.cavity_refills;

@@ -57,6 +57,13 @@ constexpr double kIdleBreakGap = 0.1;
 /// Breaks closer than this x the element size to the previous break or the edge's end are one
 /// node, used or not (a piece of 0.002 h on a hole left a face no template could fill).
 constexpr double kTinyPiece = 0.01;
+/// A break closer than this x the local element size to an end of its edge (or arc) where the
+/// boundary is tangent-continuous in every loop through it (a fillet's tangent point, the joint
+/// of two arcs of one circle) is that vertex's node: the rail's foot moves onto the vertex, by
+/// at most a tenth of an element along a boundary that is straight to first order there. Left
+/// off it, the piece between was a quad edge of a tenth of the others, and the quad had a
+/// nearly flat corner at the vertex or a sliver beside it (docs/mesher.md, "Smooth vertices").
+constexpr double kTinyEndPiece = 0.1;
 /// drop_disk_rails: at least this many rails, no two neighbours round the centre further apart
 /// than kDiskGap (a regular hexagon's six rails stay: its wedges are good quads).
 constexpr std::size_t kDiskRails = 8;
@@ -226,6 +233,7 @@ class QuadBuilder {
   /// `skip`: G-CUT-VERTs left out (idle breaks: no kept rail, within kIdleBreakGap x h of a
   /// neighbour), empty for none.
   void make_boundary_nodes(const std::vector<bool>& skip) {
+    result_.stats.smooth_vertex_feet = 0;  // counted by the last call
     // Units: every straight B-Rep edge is one; every arc (all the edges that discretise it) is
     // one, with its nodes on the circle and no node at its discretisation points.
     const std::size_t ne = part_.edges.size();
@@ -273,6 +281,13 @@ class QuadBuilder {
         for (VertexId v : loop.vertices)
           if (vertex_node_[v.index()] == kNone && !part_.vertices[v.index()].from_arc)
             vertex_node_[v.index()] = add_node(part_.vertices[v.index()].position);
+    // A vertex where the boundary is tangent-continuous in every loop through it (an arc's
+    // joint with a line or another arc): a rail foot this close to it is better on it.
+    std::vector<char> smooth_vertex(part_.vertices.size(), 1);
+    for (const Patch& patch : part_.patches)
+      for (std::size_t l = 0; l < patch.loops.size(); ++l)
+        for (std::size_t i = 0; i < patch.loops[l].vertices.size(); ++i)
+          if (!patch.polygon.smooth[l][i]) smooth_vertex[patch.loops[l].vertices[i].index()] = 0;
     std::vector<std::vector<std::pair<double, std::uint32_t>>> breaks(units_.size());
     gcut_node_.assign(graph_.gverts.size(), kNone);
     for (std::size_t g = 0; g < graph_.gverts.size(); ++g) {
@@ -314,11 +329,18 @@ class QuadBuilder {
         // and so is one closer than kTinyPiece x the element size: no quad fits such a piece.
         const double merge =
             std::max(kMergeBreakRel * part_.size, kTinyPiece * local_size(e, t));
-        if ((t - en.t.back()) * len <= merge) {
+        const double merge_end =
+            std::max(kMergeBreakRel * part_.size, kTinyEndPiece * local_size(e, t));
+        const double merge_a = smooth_vertex[un.a.index()] ? merge_end : merge;
+        const double merge_b = smooth_vertex[un.b.index()] ? merge_end : merge;
+        const double from_prev = (t - en.t.back()) * len;
+        if (from_prev <= (en.t.size() == 1 ? merge_a : merge)) {
+          if (from_prev > merge) ++result_.stats.smooth_vertex_feet;
           gcut_node_[g] = en.node.back();
           continue;
         }
-        if ((1.0 - t) * len <= merge) {
+        if ((1.0 - t) * len <= merge_b) {
+          if ((1.0 - t) * len > merge) ++result_.stats.smooth_vertex_feet;
           gcut_node_[g] = vertex_node_[un.b.index()];
           continue;
         }

@@ -1102,7 +1102,7 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
         if (gap + 1 + in >= n || n - gap + 1 + in >= n) continue;
         const double spacing = len / static_cast<double>(in + 1);
         const double penalty = 30.0 * std::abs(std::log(spacing / h));
-        if (cap - penalty <= bar()) continue;
+        if (settled(cap - penalty) <= bar()) continue;
         // The inner nodes (made below, once the chord's angles pass): node k at k / (in + 1).
         const auto inner_node = [&](std::uint32_t k) {
           return lerp(poly[i], poly[j], static_cast<double>(k) / (in + 1));
@@ -1122,9 +1122,9 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
             aj >= angle[j] - kCollinearSine)
           continue;
         double score = std::min({ai, angle[i] - ai, aj, angle[j] - aj, 0.5 * kPi}) * kDeg;
-        if (score <= bar()) continue;
+        if (settled(score) <= bar()) continue;
         score -= penalty;
-        if (score <= bar()) continue;
+        if (settled(score) <= bar()) continue;
         inner.clear();
         if (kite) inner.push_back(kite_node);
         else
@@ -1159,7 +1159,11 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
           half_b.insert(half_b.end(), inner.begin(), inner.end());
           score = std::min(score, quad_angle_score(half_b));
         }
-        if (score <= bar() || score == -std::numeric_limits<double>::infinity()) continue;
+        if (score == -std::numeric_limits<double>::infinity()) continue;
+        // Settled: two chords of a symmetric polygon score alike but for rounding, and the
+        // first of them in enumeration order wins in every pose.
+        score = settled(score);
+        if (score <= bar()) continue;
         if (best.size() == keep) best.pop_back();
         const auto at = std::find_if(best.begin(), best.end(),
                                      [&](const Chord& c) { return c.score < score; });

@@ -41,6 +41,8 @@ struct QuadStats {
   std::size_t narrow_fans = 0;     ///< rails dropped: under 10 degrees from another at a node
   std::size_t dangling_rails = 0;  ///< rail segments left out: their MA end met no other rail
   std::size_t fan_clusters = 0;    ///< MA nodes merged into a deeper one (merge_fan_clusters)
+  /// rail feet moved onto a smooth B-Rep vertex within kTinyEndPiece x h of them
+  std::size_t smooth_vertex_feet = 0;
   std::size_t parity_boundary = 0;  ///< boundary pieces given one more edge for parity
   std::size_t parity_rails = 0;     ///< rail segments given one more edge for parity
   /// odd strips whose run with fewer edges took their extra edge (docs/mesher.md, "Parity")
