@@ -6,7 +6,7 @@ carry such holes; drafted trays with holes in the floor and windows in the walls
 
   composite.py DIR [N] [SEED]   N parts per family (default 12) into DIR, names to stdout
 
-run-stress.sh's checks apply to them the same way (five poses each, STRESS_PARTS=DIR).
+run-stress.sh meshes 20 of each family beside gen.py's parts, in the same five poses.
 """
 import importlib.util
 import json
