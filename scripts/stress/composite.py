@@ -2,7 +2,8 @@
 """Random parts that mix the features gen.py's families have one at a time, as moulded and
 sheet-metal parts do: filleted outlines (convex and concave corners) with round holes and
 slots at any angle, some close to an edge or to each other; folded brackets whose flanges
-carry such holes; drafted trays with holes in the floor and windows in the walls.
+carry such holes; drafted trays with holes in the floor and windows in the walls; and
+rectangles with rounded corners of any radius (the fans of large fillets).
 
   composite.py DIR [N] [SEED]   N parts per family (default 12) into DIR, names to stdout
 
@@ -279,7 +280,21 @@ def tray_part(rnd, seed):
     return P
 
 
-FAMILIES = {"cflat": flat_part, "cbracket": bracket_part, "ctray": tray_part}
+def rounded_rect_part(rnd, seed):
+    """A W x H plate (h = 1) whose four corners are rounded with one radius r, from a twentieth
+    to nearly half its width: the arcs' fans and the faces round their centres."""
+    P = Part()
+    W = rnd.uniform(10, 30)
+    H = rnd.uniform(6, W)
+    r = rnd.uniform(0.05, 0.49) * min(W, H)
+    to3d = lambda p: (p[0], p[1], 0.0)
+    outline = [(0, 0), (W, 0), (W, H), (0, H)]
+    P.patch(filleted_outline(P, outline, [r] * 4, to3d), name="plate")
+    P.size = 1.0
+    return P
+
+
+FAMILIES = {"cflat": flat_part, "cbracket": bracket_part, "ctray": tray_part, "rrect": rounded_rect_part}
 
 
 def main():

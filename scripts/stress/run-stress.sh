@@ -2,9 +2,9 @@
 # Meshes parts nobody drew: scripts/stress/gen.py writes about 200 valid parts in 28 families
 # (closed prisms and polyhedra, boxes with tunnels, sheet-metal folds, ribs and T-junctions,
 # plates with holes, slots and fillets, thin strips, tiny edges, sharp and near-flat corners,
-# combs, spirals, many-vertex polygons, flat seams, several shells...), and composite.py's 60
+# combs, spirals, many-vertex polygons, flat seams, several shells...), and composite.py's 80
 # that mix them (filleted plates with holes and slots, folded brackets, drafted trays with
-# holes and windows). Each is meshed at its
+# holes and windows, rounded rectangles). Each is meshed at its
 # default size and with --adaptive, and turned, mirrored and scaled by 1e-3 and 1e3 at its
 # default size; a run that is refused (exit != 0), takes more than 60 s, or gives another quad
 # count in another pose is listed. Not a test (it takes 10-20 minutes on 2 cores): the check
