@@ -1460,9 +1460,10 @@ class QuadBuilder {
       }
       FaceInput& in = pending[f].in;
       std::vector<std::uint32_t>& mesh_ids = pending[f].mesh_ids;
-      auto emit = [&](std::uint32_t id) {
+      auto emit = [&](std::uint32_t id, bool free) {
         mesh_ids.push_back(id);
         in.cycle.push_back(pos2.at(id));
+        in.free_nodes.push_back(free);  // an MA node or a rail's inner node: off the boundary
       };
       for (std::size_t k = 0; k < cycle.size(); ++k) {
         const Half h = cycle[k];
@@ -1486,13 +1487,13 @@ class QuadBuilder {
           open_side(FaceSide::Kind::Boundary);
           open_side(FaceSide::Kind::Rail);
         }
-        emit(g.nodes[tail].mesh);
+        emit(g.nodes[tail].mesh, g.nodes[tail].ma);
         const std::vector<std::uint32_t>& inner =
             rail ? c.inner : edges_[c.edge].inner[c.piece];
         // Along the half-edge: rails are stored from a to b, pieces in the edge's direction.
         const bool backwards = rail ? h.reverse : (c.forward == h.reverse);
         for (std::size_t i = 0; i < inner.size(); ++i)
-          emit(inner[backwards ? inner.size() - 1 - i : i]);
+          emit(inner[backwards ? inner.size() - 1 - i : i], rail);
         in.sides.back().edges += static_cast<std::uint32_t>(inner.size()) + 1;
       }
       std::ostringstream where;

@@ -357,7 +357,10 @@ class PatchRefill {
     // the least id, at the origin): the same cavity in every pose of the part is the same
     // problem, bit for bit, and the templates and the relaxation decide alike.
     const LocalFrame cf(pq_.pos, cycle);
-    for (std::uint32_t v : cycle) face.cycle.push_back(cf.to_local(pq_.pos[v]));
+    for (std::uint32_t v : cycle) {
+      face.cycle.push_back(cf.to_local(pq_.pos[v]));
+      face.free_nodes.push_back(!pq_.fixed[v]);
+    }
     const std::size_t n = cycle.size();
     std::vector<Vec2> old_inner;
     for (std::uint32_t v : inner) old_inner.push_back(cf.to_local(pq_.pos[v]));

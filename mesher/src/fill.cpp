@@ -1850,6 +1850,11 @@ constexpr double kReflexLengthStep = 0.1;
 /// Only faces up to this size, and pieces are cut again only once (depth).
 constexpr std::size_t kReflexCutNodes = 160;
 constexpr int kReflexCutDepth = 1;
+constexpr double kReflexHalveMin = 250.0 * kPi / 180.0;
+constexpr double kReflexHalveMax = 300.0 * kPi / 180.0;
+constexpr double kReflexHalveSlack = 12.0 * kPi / 180.0;
+constexpr std::size_t kReflexHalves = 2;
+constexpr double kReflexHalveBelow = 0.5;
 
 /// How far an angle of a piece's corner is from 90 degrees or flat (a reflex part counts
 /// from flat).
@@ -1894,6 +1899,14 @@ std::vector<FaceSide> piece_sides(const std::vector<Vec2>& poly, std::uint32_t m
   return sides;
 }
 
+/// How far an angle is from a multiple of 45 degrees between 45 and 180: the far end of a
+/// halving cut may leave 45 or 135 degrees (a grid's worst corner there is sin 45 = 0.71).
+double loose_slack(double a) {
+  double best = kPi;
+  for (int k = 1; k <= 4; ++k) best = std::min(best, std::abs(a - 0.25 * kPi * k));
+  return best;
+}
+
 bool has_reflex(const std::vector<Vec2>& poly) {
   for (std::size_t k = 0; k < poly.size(); ++k)
     if (interior_angle(poly, k) >= kReflexCutMin) return true;
@@ -1911,6 +1924,7 @@ std::optional<FaceMesh> fill_reflex(const FaceInput& face, int depth) {
     double slack;
     double length;
     std::uint32_t r, t;
+    bool halves;  ///< bisects a corner of kReflexHalveMin or more (and its other end)
   };
   std::vector<Cut> cuts;
   for (std::uint32_t r = 0; r < n; ++r) {
@@ -1926,8 +1940,17 @@ std::optional<FaceMesh> fill_reflex(const FaceInput& face, int depth) {
       const double ta = ccw_angle(-1.0 * c, p[(t + n - 1) % n] - p[t]);
       const double tb = angle[t] - ta;
       if (ta <= 0.0 || tb <= 0.0) continue;
-      const double slack = std::max({corner_slack(ra), corner_slack(rb), corner_slack(ta), corner_slack(tb)});
-      if (slack > kReflexCutSlack) continue;
+      // A corner of 250 degrees or more (a round end's centre: the arc's fan spans its 90
+      // degrees, the face round it the other 270) may also be halved, 135 and 135.
+      const bool free_r = r < face.free_nodes.size() && face.free_nodes[r];
+      const double half_r = free_r && angle[r] >= kReflexHalveMin && angle[r] <= kReflexHalveMax
+                                ? std::abs(ra - 0.5 * angle[r])
+                                : kPi;
+      const double plain = std::max({corner_slack(ra), corner_slack(rb), corner_slack(ta), corner_slack(tb)});
+      const double halved = std::max({half_r, loose_slack(ta), loose_slack(tb)});
+      const bool halves = plain > kReflexCutSlack;
+      const double slack = halves ? halved : plain;
+      if (slack > (halves ? kReflexHalveSlack : kReflexCutSlack)) continue;
       bool crosses = false;
       for (std::uint32_t k = 0; k < n && !crosses; ++k) {
         const std::uint32_t k1 = (k + 1) % n;
@@ -1935,9 +1958,13 @@ std::optional<FaceMesh> fill_reflex(const FaceInput& face, int depth) {
         crosses = mesher_detail::segments_meet(p[r], p[t], p[k], p[k1]);
       }
       if (crosses || !inside_polygon(0.5 * (p[r] + p[t]), p)) continue;
-      cuts.push_back({slack, norm(c), r, t});
+      cuts.push_back({slack, norm(c), r, t, halves});
     }
   }
+  // Halving cuts only where no plain one fits.
+  if (std::any_of(cuts.begin(), cuts.end(), [](const Cut& c) { return !c.halves; }))
+    cuts.erase(std::remove_if(cuts.begin(), cuts.end(), [](const Cut& c) { return c.halves; }),
+               cuts.end());
   if (cuts.empty()) return std::nullopt;
   // Best first: least slack, then shortest, each in whole steps (kReflexSlackStep, and
   // kReflexLengthStep of the face's mean edge) so that chords equal but for rounding (mirror
@@ -1945,21 +1972,23 @@ std::optional<FaceMesh> fill_reflex(const FaceInput& face, int depth) {
   double mean_edge = 0.0;
   for (std::uint32_t k = 0; k < n; ++k) mean_edge += edge(k) / n;
   auto rank = [&](const Cut& c) {
-    return std::make_tuple(std::round(c.slack / kReflexSlackStep),
+    return std::make_tuple(c.halves, std::round(c.slack / kReflexSlackStep),
                            std::floor(c.length / (kReflexLengthStep * mean_edge)), c.r, c.t);
   };
   std::sort(cuts.begin(), cuts.end(), [&](const Cut& a, const Cut& b) { return rank(a) < rank(b); });
   // A chord and its reverse (both ends reflex) are one cut.
   std::optional<FaceMesh> best;
   double best_shape = 0.0;
-  std::size_t tried = 0;
+  std::size_t tried = 0, halving = 0;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> done;
   for (const Cut& cut : cuts) {
-    if (tried == kReflexCuts) break;
+    if (cut.halves ? halving == kReflexHalves : tried == kReflexCuts) continue;
+    // Halving cuts (ranked after the others) only where no plain cut gave good quads.
+    if (cut.halves && best && best->min_jacobian >= kReflexHalveBelow) break;
     const std::pair<std::uint32_t, std::uint32_t> key = std::minmax(cut.r, cut.t);
     if (std::find(done.begin(), done.end(), key) != done.end()) continue;
     done.push_back(key);
-    ++tried;
+    ++(cut.halves ? halving : tried);
     const std::uint32_t r = cut.r, t = cut.t, gap = (t + n - r) % n;
     const double h = 0.25 * (edge(r) + edge((r + n - 1) % n) + edge(t) + edge((t + n - 1) % n));
     // Inner nodes k: gap + k + 1 even, spacing nearest h in ratio.

@@ -29,6 +29,9 @@ struct FaceSide {
 struct FaceInput {
   std::vector<Vec2> cycle;
   std::vector<FaceSide> sides;
+  /// Per cycle node, when known (a re-fill's cavity): true for a node that may move, off the
+  /// part's boundary. The reflex cut halves only such corners (kReflexHalveMin).
+  std::vector<bool> free_nodes;
 };
 
 enum class FillKind : std::uint8_t {

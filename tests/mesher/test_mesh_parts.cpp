@@ -420,6 +420,14 @@ TEST_CASE("a rail landing beside a fillet's tangent point lands on it", "[mesh][
                    [](const MeshPartResult& r) { return r.stats.smooth_vertex_feet > 0; });
 }
 
+TEST_CASE("the face round a fillet's centre is cut along the axis", "[mesh][face]") {
+  // A 20 x 10 plate with corner fillets of radius 3.5 at h = 1: round each fillet's centre the
+  // face between the arc's fan and the next tracks has a corner of 270 degrees, which no plain
+  // reflex cut (near 90 or 180 degrees at both ends) splits; its fills had corners of 0.2-0.5
+  // (worst 0.494, Gmsh 0.714). A cut halving both of its end corners (kReflexHalveMin): 0.792.
+  check_three_poses(read_brep_json(test_data_dir() + "/parts/rounded_plate_r35.json"), 0.74);
+}
+
 TEST_CASE("a large face whose structured fill is bad tries the unstructured templates",
           "[mesh][face]") {
   // cgal_wheel_16_spokes at half its size: each slot's tip (a corner of 350 degrees) lay on a
