@@ -1850,6 +1850,10 @@ constexpr double kReflexLengthStep = 0.1;
 /// Only faces up to this size, and pieces are cut again only once (depth).
 constexpr std::size_t kReflexCutNodes = 160;
 constexpr int kReflexCutDepth = 1;
+/// Halving cuts, where no plain cut fits: a corner of kReflexHalveMin to kReflexHalveMax at a
+/// node off the boundary (FaceInput::free_nodes) halved within kReflexHalveSlack, the far end
+/// within it of 45, 90, 135 or 180 degrees; at most kReflexHalves tried, until one gives
+/// quads of kReflexHalveBelow or more.
 constexpr double kReflexHalveMin = 250.0 * kPi / 180.0;
 constexpr double kReflexHalveMax = 300.0 * kPi / 180.0;
 constexpr double kReflexHalveSlack = 12.0 * kPi / 180.0;
@@ -1940,8 +1944,9 @@ std::optional<FaceMesh> fill_reflex(const FaceInput& face, int depth) {
       const double ta = ccw_angle(-1.0 * c, p[(t + n - 1) % n] - p[t]);
       const double tb = angle[t] - ta;
       if (ta <= 0.0 || tb <= 0.0) continue;
-      // A corner of 250 degrees or more (a round end's centre: the arc's fan spans its 90
-      // degrees, the face round it the other 270) may also be halved, 135 and 135.
+      // Halving cuts (docs/mesher.md, "Reflex cut"): a corner of 250-300 degrees off the
+      // boundary (round a large fillet's centre: the arc's fan spans its 90 degrees, the face
+      // the rest) halved, the far end left near 45, 90, 135 or 180 degrees.
       const bool free_r = r < face.free_nodes.size() && face.free_nodes[r];
       const double half_r = free_r && angle[r] >= kReflexHalveMin && angle[r] <= kReflexHalveMax
                                 ? std::abs(ra - 0.5 * angle[r])
@@ -1972,23 +1977,24 @@ std::optional<FaceMesh> fill_reflex(const FaceInput& face, int depth) {
   double mean_edge = 0.0;
   for (std::uint32_t k = 0; k < n; ++k) mean_edge += edge(k) / n;
   auto rank = [&](const Cut& c) {
-    return std::make_tuple(c.halves, std::round(c.slack / kReflexSlackStep),
+    return std::make_tuple(std::round(c.slack / kReflexSlackStep),
                            std::floor(c.length / (kReflexLengthStep * mean_edge)), c.r, c.t);
   };
   std::sort(cuts.begin(), cuts.end(), [&](const Cut& a, const Cut& b) { return rank(a) < rank(b); });
   // A chord and its reverse (both ends reflex) are one cut.
   std::optional<FaceMesh> best;
   double best_shape = 0.0;
-  std::size_t tried = 0, halving = 0;
+  std::size_t tried = 0;
+  const std::size_t most = cuts.front().halves ? kReflexHalves : kReflexCuts;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> done;
   for (const Cut& cut : cuts) {
-    if (cut.halves ? halving == kReflexHalves : tried == kReflexCuts) continue;
-    // Halving cuts (ranked after the others) only where no plain cut gave good quads.
+    if (tried == most) break;
+    // Of the halving cuts, the first that gives quads of kReflexHalveBelow or more.
     if (cut.halves && best && best->min_jacobian >= kReflexHalveBelow) break;
     const std::pair<std::uint32_t, std::uint32_t> key = std::minmax(cut.r, cut.t);
     if (std::find(done.begin(), done.end(), key) != done.end()) continue;
     done.push_back(key);
-    ++(cut.halves ? halving : tried);
+    ++tried;
     const std::uint32_t r = cut.r, t = cut.t, gap = (t + n - r) % n;
     const double h = 0.25 * (edge(r) + edge((r + n - 1) % n) + edge(t) + edge((t + n - 1) % n));
     // Inner nodes k: gap + k + 1 even, spacing nearest h in ratio.

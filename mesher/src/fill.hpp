@@ -29,8 +29,9 @@ struct FaceSide {
 struct FaceInput {
   std::vector<Vec2> cycle;
   std::vector<FaceSide> sides;
-  /// Per cycle node, when known (a re-fill's cavity): true for a node that may move, off the
-  /// part's boundary. The reflex cut halves only such corners (kReflexHalveMin).
+  /// Per cycle node, when known (a patch's face, a re-fill's cavity; empty for the pieces a
+  /// template cuts): true for a node off the part's boundary (an MA node, a rail's inner node,
+  /// a cavity node that may move). The reflex cut halves only such corners (kReflexHalveMin).
   std::vector<bool> free_nodes;
 };
 
