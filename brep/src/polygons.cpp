@@ -229,24 +229,20 @@ void check_arc_circles(const BuildState& s, std::size_t p) {
         arc_of[l].push_back(-1);
         continue;
       }
-      // The angles of the chord's ends on the arc's circle, from its `from` point.
-      const ArcInfo& arc = s.arcs[static_cast<std::size_t>(a)];
-      const Vec3 e1 = normalized(s.part.vertices[arc.from.index()].position - arc.center);
-      const Vec3 e2 = cross(arc.axis, e1);
-      const auto angle = [&](VertexId v) {
+      // The chord's ends as fractions of the arc's angle (its points are uniform in angle),
+      // and the pieces between them on the circle (PartArc::at).
+      const PartArc& arc = s.part.arcs[static_cast<std::size_t>(a)];
+      const auto fraction = [&](VertexId v) {
         if (v == arc.from) return 0.0;
-        if (v == arc.to) return arc.span;
-        const Vec3 d = s.part.vertices[v.index()].position - arc.center;
-        const double t = std::atan2(dot(d, e2), dot(d, e1));
-        return t < 0.0 ? t + 2.0 * kPi : t;
+        if (v == arc.to) return 1.0;
+        return static_cast<double>(s.arc_point_of[v.index() - s.file_vertex_count()].second) /
+               static_cast<double>(arc.points.size() + 1);
       };
-      const double t0 = angle(chain.vertices[i]);
-      const double t1 = angle(chain.vertices[(i + 1) % loop.size()]);
-      for (std::size_t k = 1; k < kCircleCheckPieces; ++k) {
-        const double t = t0 + (t1 - t0) * static_cast<double>(k) / kCircleCheckPieces;
-        fine[l].push_back(
-            frame.to_2d(arc.center + arc.radius * (std::cos(t) * e1 + std::sin(t) * e2)));
-      }
+      const double u0 = fraction(chain.vertices[i]);
+      const double u1 = fraction(chain.vertices[(i + 1) % loop.size()]);
+      for (std::size_t k = 1; k < kCircleCheckPieces; ++k)
+        fine[l].push_back(frame.to_2d(
+            arc.at(u0 + (u1 - u0) * static_cast<double>(k) / kCircleCheckPieces)));
       arc_of[l].insert(arc_of[l].end(), kCircleCheckPieces, a);
     }
   }

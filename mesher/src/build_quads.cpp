@@ -282,12 +282,15 @@ class QuadBuilder {
           if (vertex_node_[v.index()] == kNone && !part_.vertices[v.index()].from_arc)
             vertex_node_[v.index()] = add_node(part_.vertices[v.index()].position);
     // A vertex where the boundary is tangent-continuous in every loop through it (an arc's
-    // joint with a line or another arc): a rail foot this close to it is better on it.
-    std::vector<char> smooth_vertex(part_.vertices.size(), 1);
-    for (const Patch& patch : part_.patches)
-      for (std::size_t l = 0; l < patch.loops.size(); ++l)
-        for (std::size_t i = 0; i < patch.loops[l].vertices.size(); ++i)
-          if (!patch.polygon.smooth[l][i]) smooth_vertex[patch.loops[l].vertices[i].index()] = 0;
+    // joint with a line or another arc): a rail foot this close to it is better on it. The
+    // same for both calls: found once.
+    if (smooth_vertex_.empty()) {
+      smooth_vertex_.assign(part_.vertices.size(), 1);
+      for (const Patch& patch : part_.patches)
+        for (std::size_t l = 0; l < patch.loops.size(); ++l)
+          for (std::size_t i = 0; i < patch.loops[l].vertices.size(); ++i)
+            if (!patch.polygon.smooth[l][i]) smooth_vertex_[patch.loops[l].vertices[i].index()] = 0;
+    }
     std::vector<std::vector<std::pair<double, std::uint32_t>>> breaks(units_.size());
     gcut_node_.assign(graph_.gverts.size(), kNone);
     for (std::size_t g = 0; g < graph_.gverts.size(); ++g) {
@@ -331,8 +334,8 @@ class QuadBuilder {
             std::max(kMergeBreakRel * part_.size, kTinyPiece * local_size(e, t));
         const double merge_end =
             std::max(kMergeBreakRel * part_.size, kTinyEndPiece * local_size(e, t));
-        const double merge_a = smooth_vertex[un.a.index()] ? merge_end : merge;
-        const double merge_b = smooth_vertex[un.b.index()] ? merge_end : merge;
+        const double merge_a = smooth_vertex_[un.a.index()] ? merge_end : merge;
+        const double merge_b = smooth_vertex_[un.b.index()] ? merge_end : merge;
         const double from_prev = (t - en.t.back()) * len;
         if (from_prev <= (en.t.size() == 1 ? merge_a : merge)) {
           if (from_prev > merge) ++result_.stats.smooth_vertex_feet;
@@ -1537,6 +1540,7 @@ class QuadBuilder {
   std::vector<Unit> units_;
   std::vector<std::uint32_t> unit_of_edge_;
   std::vector<std::uint32_t> vertex_node_;
+  std::vector<char> smooth_vertex_;  ///< per part vertex: tangent-continuous in all its loops
   std::vector<std::uint32_t> gcut_node_;
   /// Per mesh node made by make_boundary_nodes: a B-Rep vertex's (true) or a break's (false).
   std::vector<bool> is_vertex_node_;

@@ -52,7 +52,7 @@ class MeshRows {
  public:
   MeshRows(const Part& part, const QuadMesh& mesh, std::vector<bool> through,
            const std::vector<bool>& removable)
-      : part_(part), mesh_(mesh), through_(through), removable_(removable),
+      : part_(part), mesh_(mesh), through_(std::move(through)), removable_(removable),
         around_(mesh.nodes.size()) {
     for (std::uint32_t q = 0; q < mesh_.elements.size(); ++q)
       if (mesh_.elements[q].is_quad())
