@@ -2729,14 +2729,16 @@ void untaper_nodes(std::vector<Vec2>& pos,
   // Per quad round the node being moved: its faults before the move.
   std::vector<unsigned> faults;
   // The sum of (1 - taper)^2 over the quads round v, their worst scaled Jacobian and the sum
-  // of their scaled Jacobians, and the largest area ratio between one of them and a quad
-  // across an edge of it; with `faults` filled, infinity when a quad has a fault it did not
-  // have.
-  const auto measure = [&](std::uint32_t v, double& worst, double& jacobians, double& ratio) {
+  // of their scaled Jacobians, the largest area ratio between one of them and a quad across
+  // an edge of it, and how many of them are tapered (quality.md: taper <= 0.8); with `faults`
+  // filled, infinity when a quad has a fault it did not have.
+  const auto measure = [&](std::uint32_t v, double& worst, double& jacobians, double& ratio,
+                           int& tapered) {
     double sum = 0.0;
     worst = std::numeric_limits<double>::infinity();
     jacobians = 0.0;
     ratio = 1.0;
+    tapered = 0;
     for (std::size_t i = 0; i < around[v].size(); ++i) {
       const std::uint32_t q = around[v][i];
       const auto& x = quads[q];
@@ -2744,7 +2746,9 @@ void untaper_nodes(std::vector<Vec2>& pos,
       const unsigned f = midline_faults(a, b, c, d);
       if (faults.size() < around[v].size()) faults.push_back(f);
       else if (f & ~faults[i]) return std::numeric_limits<double>::infinity();
-      const double off = 1.0 - quad_taper(a, b, c, d);
+      const double taper = quad_taper(a, b, c, d);
+      if (taper <= QualityThresholds::kTaper) ++tapered;
+      const double off = 1.0 - taper;
       sum += off * off;
       const double jq = min_scaled_jacobian(a, b, c, d);
       worst = std::min(worst, jq);
@@ -2758,7 +2762,12 @@ void untaper_nodes(std::vector<Vec2>& pos,
     }
     return sum;
   };
-  sweep_nodes(pos, fixed, around, quads, iterations, [&](std::uint32_t v) {
+  // First the moves towards the parallelograms alone; then, from where they stop, with the
+  // descent as well, and no move raising the count of tapered quads round the node. (With the
+  // descent from the start, descents made before the first kind of move had settled held it
+  // back: t_junction's tapered quads 12 -> 7, not 12 -> 1.)
+  bool descend = false;
+  const auto visit = [&](std::uint32_t v) {
     // Where v would make each quad round it a parallelogram (the node after it plus the
     // node before it minus the opposite node), averaged.
     Vec2 goal{0.0, 0.0};
@@ -2784,21 +2793,63 @@ void untaper_nodes(std::vector<Vec2>& pos,
       goal = (1.0 / static_cast<double>(around[v].size())) * goal;
       faults.clear();
       double worst_before = 0.0, jacobians_before = 0.0, ratio_before = 1.0;
-      const double before = measure(v, worst_before, jacobians_before, ratio_before);
+      int tapered_before = 0;
+      const double before =
+          measure(v, worst_before, jacobians_before, ratio_before, tapered_before);
       const double ratio_cap = std::max(ratio_before, kUntaperAreaRatio);
-      for (double step : {1.0, 0.5, 0.25}) {
-        pos[v] = lerp(old, goal, step);
+      // Moves v to p when that passes every test; else leaves it where it was.
+      const auto try_move = [&](Vec2 p) {
+        pos[v] = p;
         double worst = 0.0, jacobians = 0.0, ratio = 1.0;
-        const double after = measure(v, worst, jacobians, ratio);
-        if (after < before - kUntaperGain && settled(worst) >= settled(worst_before) &&
-            keeps_sign(worst_before, worst) && ratio <= ratio_cap &&
-            jacobians >= jacobians_before - kUntaperJacobianSlack)
-          break;
+        int tapered = 0;
+        const double after = measure(v, worst, jacobians, ratio, tapered);
+        if (after < before - kUntaperGain && (!descend || tapered <= tapered_before) &&
+            settled(worst) >= settled(worst_before) && keeps_sign(worst_before, worst) &&
+            ratio <= ratio_cap && jacobians >= jacobians_before - kUntaperJacobianSlack)
+          return true;
         pos[v] = old;
+        return false;
+      };
+      const bool moved = try_move(lerp(old, goal, 1.0)) || try_move(lerp(old, goal, 0.5)) ||
+                   try_move(lerp(old, goal, 0.25));
+      // Where no such move passes and a quad round v is tapered, down the sum's gradient
+      // (central differences): the parallelogram points of a node's quads pull apart where
+      // they disagree (a kite beside a trapezoid), and their mean may help none of them.
+      if (descend && !moved && tapered_before > 0) {
+        double length = 0.0;
+        std::size_t edges = 0;
+        for (std::uint32_t q : around[v])
+          for (std::uint32_t u : quads[q])
+            if (u != v) {
+              length += distance(pos[u], old);
+              ++edges;
+            }
+        length /= static_cast<double>(edges);
+        const auto sum_at = [&](Vec2 p) {
+          pos[v] = p;
+          double sum = 0.0;
+          for (std::uint32_t q : around[v]) {
+            const auto& x = quads[q];
+            const double off = 1.0 - quad_taper(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]);
+            sum += off * off;
+          }
+          pos[v] = old;
+          return sum;
+        };
+        const double e = kUntaperDifference * length;
+        const Vec2 slope{sum_at(old + Vec2{e, 0.0}) - sum_at(old - Vec2{e, 0.0}),
+                         sum_at(old + Vec2{0.0, e}) - sum_at(old - Vec2{0.0, e})};
+        const double steep = norm(slope);
+        if (steep > 0.0)
+          for (double step : kUntaperDescent)
+            if (try_move(old - (step * length / steep) * slope)) break;
       }
     }
     return !same_bits(pos[v], old);
-  });
+  };
+  sweep_nodes(pos, fixed, around, quads, iterations, visit);
+  descend = true;
+  sweep_nodes(pos, fixed, around, quads, iterations, visit);
 }
 
 }  // namespace laytracks::mesher_detail

@@ -301,16 +301,21 @@ TEST_CASE("the final untangling lifts the worst corners towards 0.75",
 TEST_CASE("the final smoothing evens trapezoids without skewing or stretching", "[mesh][taper]") {
   // untaper_nodes, session 13: taper <= 0.8 (quality.md) was 20.0% on cgal_wheel_16_spokes,
   // 11.8% on plate_with_hole, 33.6% on cover_bosses and 3.9% on t_junction after the
-  // smoothing; now 13.3%, 7.7%, 28.8% and 0.3%. Skew >= 30 and aspect >= 5 do not rise, the
-  // worst corner does not fall.
+  // smoothing; then 13.3%, 7.7%, 28.8% and 0.3% (22.2% on cover_bosses by session 20). Session
+  // 21's descent (kUntaperDescent): 11.0%, 5.4%, 20.6% and 0%; the bracket 14.1% -> 11.4%, the
+  // tray 10.4% -> 9.5% and star_5 10.5% -> 9.7%, those two now within the paper's Table III
+  // (10.4%). Skew >= 30 and aspect >= 5 do not rise, the worst corner does not fall.
   const struct {
     std::string file;
     double taper_percent;
     double worst;
-  } cases[] = {{cases_dir() + "/external/cgal_wheel_16_spokes.json", 14.0, 0.77},
-               {cases_dir() + "/plate_with_hole.json", 9.0, 0.84},
-               {samples_dir() + "/cover_bosses.json", 31.0, 0.71},
-               {cases_dir() + "/t_junction.json", 1.0, 0.83}};
+  } cases[] = {{cases_dir() + "/external/cgal_wheel_16_spokes.json", 12.0, 0.77},
+               {cases_dir() + "/plate_with_hole.json", 6.2, 0.84},
+               {samples_dir() + "/cover_bosses.json", 21.5, 0.71},
+               {cases_dir() + "/t_junction.json", 0.2, 0.83},
+               {samples_dir() + "/bracket.json", 12.5, 0.70},
+               {samples_dir() + "/tray_ribs.json", 10.4, 0.72},
+               {cases_dir() + "/star_5.json", 10.4, 0.61}};
   for (const auto& c : cases) {
     INFO(c.file);
     const MeshPartResult r = mesh_part(load_part(c.file));
