@@ -117,6 +117,7 @@ int run_mesh(const std::vector<std::string>& argv) {
     doc["smooth_vertex_feet"] = r.stats.smooth_vertex_feet;
     doc["edge_flips"] = r.stats.edge_flips;
     doc["thin_rows_merged"] = r.stats.thin_rows;
+    doc["corner_kites_folded"] = r.stats.corner_kites;
     doc["cavity_refills"] = r.stats.cavity_refills;
     doc["loop_bridges"] = r.stats.loop_bridges;
     doc["disk_patches"] = r.stats.disk_patches;

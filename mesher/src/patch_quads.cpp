@@ -15,6 +15,21 @@ namespace {
 constexpr std::uint32_t kUnset = 0xffffffffu;
 }  // namespace
 
+std::vector<bool> vertex_nodes(const Part& part, const QuadMesh& mesh) {
+  const double tol = MeshTolerances::kOnBrep * part.size;  // at a vertex, as the check says
+  std::vector<bool> vertex(mesh.nodes.size(), false);
+  // Nodes by sorted x.
+  std::vector<std::pair<double, std::uint32_t>> by_x;
+  for (std::uint32_t v = 0; v < mesh.nodes.size(); ++v) by_x.emplace_back(mesh.nodes[v].x, v);
+  std::sort(by_x.begin(), by_x.end());
+  for (const auto& pv : part.vertices) {
+    auto it = std::lower_bound(by_x.begin(), by_x.end(), std::make_pair(pv.position.x - tol, 0u));
+    for (; it != by_x.end() && it->first <= pv.position.x + tol; ++it)
+      if (distance(mesh.nodes[it->second], pv.position) <= tol) vertex[it->second] = true;
+  }
+  return vertex;
+}
+
 std::vector<bool> shared_nodes(const QuadMesh& mesh) {
   std::vector<std::uint32_t> patch_of(mesh.nodes.size(), kUnset);
   std::vector<bool> shared(mesh.nodes.size(), false);

@@ -348,19 +348,7 @@ class MeshRows {
 std::size_t merge_thin_rows(const Part& part, QuadMesh& mesh) {
   const std::vector<bool> pinned = pinned_nodes(mesh);
   const std::vector<bool> shared = shared_nodes(mesh);
-  const double tol = MeshTolerances::kOnBrep * part.size;  // at a vertex, as the check says
-  std::vector<bool> vertex(mesh.nodes.size(), false);
-  {
-    // Nodes at B-Rep vertices, by sorted x.
-    std::vector<std::pair<double, std::uint32_t>> by_x;
-    for (std::uint32_t v = 0; v < mesh.nodes.size(); ++v) by_x.emplace_back(mesh.nodes[v].x, v);
-    std::sort(by_x.begin(), by_x.end());
-    for (const auto& pv : part.vertices) {
-      auto it = std::lower_bound(by_x.begin(), by_x.end(), std::make_pair(pv.position.x - tol, 0u));
-      for (; it != by_x.end() && it->first <= pv.position.x + tol; ++it)
-        if (distance(mesh.nodes[it->second], pv.position) <= tol) vertex[it->second] = true;
-    }
-  }
+  const std::vector<bool> vertex = vertex_nodes(part, mesh);
   // A chain passes a patch's interior node, or a node of a seam between two patches (pinned
   // because it is shared; MeshRows checks that its quads close round it, two in each patch);
   // a boundary node used by one patch, no B-Rep vertex, may go with a chain's end.

@@ -425,6 +425,17 @@ TEST_CASE("a rail landing beside a fillet's tangent point lands on it", "[mesh][
                    [](const MeshPartResult& r) { return r.stats.smooth_vertex_feet > 0; });
 }
 
+TEST_CASE("a strip's obtuse convex corner is split by the quads beside it, not a kite",
+          "[mesh][kite]") {
+  // A strip 2 wide at h = 1 with two bends of 45 degrees: at each convex corner (135 degrees)
+  // the rails from the axis's branch point landed on both sides of the corner, and the quad
+  // between them and the corner was a kite with a 45-degree corner (0.707) and taper 0.31.
+  // fold_corner_kites drops the kite's two side nodes and the quads beyond take the corner:
+  // worst 0.923, taper <= 0.8 7.1% -> 5.6% (56 -> 54 quads).
+  check_test_parts({{"strip_bend45.json", 0.9}},
+                   [](const MeshPartResult& r) { return r.stats.corner_kites == 2; });
+}
+
 TEST_CASE("the face round a fillet's centre is cut along the axis", "[mesh][face]") {
   // A 20 x 10 plate with corner fillets of radius 3.5 at h = 1: round each fillet's centre the
   // face between the arc's fan and the next tracks has a corner of 270 degrees, which no plain

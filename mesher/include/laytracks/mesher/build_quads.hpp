@@ -49,6 +49,7 @@ struct QuadStats {
   std::size_t parity_strips = 0;
   std::size_t edge_flips = 0;       ///< quad pairs re-split by flip_edges
   std::size_t thin_rows = 0;        ///< chains merged by merge_thin_rows
+  std::size_t corner_kites = 0;     ///< kites folded by fold_corner_kites
   std::size_t cavity_refills = 0;   ///< cavities round bad quads filled again (refill_cavities)
   std::size_t loop_bridges = 0;     ///< loops no rail reached, joined by two bridge rails
   std::size_t disk_patches = 0;     ///< patches whose rails all met at one point: one face
@@ -84,6 +85,13 @@ std::size_t flip_edges(const Part& part,
 /// its worst corner than its pair (to rounding), each is squarer or at most 3 in aspect, and
 /// the chain's worst aspect falls. Returns the chains merged.
 std::size_t merge_thin_rows(const Part& part, QuadMesh& mesh);
+
+/// Corner kites folded (docs/mesher.md, "Corner kites"), run after the thin rows: where one
+/// quad meets a B-Rep vertex and its two other nodes beside the vertex lie on straight boundary
+/// of one patch (no B-Rep vertex, two quads each), those two nodes go and the quads beyond
+/// them take the vertex instead, when their worst corner then beats the worst of the three by
+/// 0.02. Returns the folds made.
+std::size_t fold_corner_kites(const Part& part, QuadMesh& mesh);
 
 /// Cavity re-fill (docs/mesher.md, "Cavity re-fill"), run after the flips and before the
 /// smoothing: round the worst quads below `below` of each patch (at most 32 + 1/50 of its
