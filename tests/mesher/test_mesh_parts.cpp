@@ -436,6 +436,17 @@ TEST_CASE("a strip's obtuse convex corner is split by the quads beside it, not a
                    [](const MeshPartResult& r) { return r.stats.corner_kites == 2; });
 }
 
+TEST_CASE("a strip's right-angle bend is one quad at its reflex corner, not two", "[mesh][kite]") {
+  // A strip 2 wide at h = 1 with one bend of 90 degrees: rails of the reflex corner's fan
+  // landed 0.15 h from it on both sides, and the two quads at the corner had corners of 135
+  // degrees there (0.707). fold_corner_kites drops the two feet, the two quads become the
+  // bend's square and the corner is split in three right angles: worst 0.988, taper <= 0.8
+  // 5.4% -> 0% (37 -> 36 quads).
+  check_test_parts({{"strip_bend90.json", 0.95}}, [](const MeshPartResult& r) {
+    return r.stats.corner_kites == 1 && r.quality.measures[2].bad_percent == 0.0;
+  });
+}
+
 TEST_CASE("the face round a fillet's centre is cut along the axis", "[mesh][face]") {
   // A 20 x 10 plate with corner fillets of radius 3.5 at h = 1: round each fillet's centre the
   // face between the arc's fan and the next tracks has a corner of 270 degrees, which no plain

@@ -87,10 +87,11 @@ std::size_t flip_edges(const Part& part,
 std::size_t merge_thin_rows(const Part& part, QuadMesh& mesh);
 
 /// Corner kites folded (docs/mesher.md, "Corner kites"), run after the thin rows: where one
-/// quad meets a B-Rep vertex and its two other nodes beside the vertex lie on straight boundary
-/// of one patch (no B-Rep vertex, two quads each), those two nodes go and the quads beyond
-/// them take the vertex instead, when their worst corner then beats the worst of the three by
-/// 0.02. Returns the folds made.
+/// quad meets a B-Rep vertex (or two sharing an edge from it), and its (their) nodes beside the
+/// vertex lie on straight boundary of one patch (no B-Rep vertex, two quads each, no farther
+/// from the vertex than 1.5 x the next boundary edge), those two nodes go and the quads beyond
+/// them take the vertex instead (the two quads at it become one), when the worst corner of the
+/// quads made beats the worst of those replaced by 0.02. Returns the folds made.
 std::size_t fold_corner_kites(const Part& part, QuadMesh& mesh);
 
 /// Cavity re-fill (docs/mesher.md, "Cavity re-fill"), run after the flips and before the
