@@ -118,6 +118,7 @@ int run_mesh(const std::vector<std::string>& argv) {
     doc["edge_flips"] = r.stats.edge_flips;
     doc["thin_rows_merged"] = r.stats.thin_rows;
     doc["corner_kites_folded"] = r.stats.corner_kites;
+    doc["boundary_nodes_slid"] = r.stats.slid_nodes;
     doc["cavity_refills"] = r.stats.cavity_refills;
     doc["loop_bridges"] = r.stats.loop_bridges;
     doc["disk_patches"] = r.stats.disk_patches;

@@ -1803,8 +1803,8 @@ std::optional<FaceMesh> fill_ogrid(const FaceInput& face) {
   return best;
 }
 
-/// quality.md's taper of the quad p0..p3: the smallest corner triangle over their mean (0
-/// for a quad of no positive area).
+}  // namespace
+
 double quad_taper(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3) {
   const Vec2 p[4] = {p0, p1, p2, p3};
   double a[4], sum = 0.0;
@@ -1815,6 +1815,8 @@ double quad_taper(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3) {
   if (!(sum > 0.0)) return 0.0;
   return std::min({a[0], a[1], a[2], a[3]}) / (0.25 * sum);
 }
+
+namespace {
 
 /// The mean over a face's quads of min(scaled Jacobian, taper) (quality.md): 1 for squares,
 /// 0.5 for the kites of a triangle split into three. Chooses between unstructured templates

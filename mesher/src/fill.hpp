@@ -101,6 +101,10 @@ inline double corner_jacobian(Vec2 at, Vec2 next, Vec2 prev) {
 /// Smallest scaled Jacobian over the four corners of quad abcd (counter-clockwise > 0).
 double min_scaled_jacobian(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
 
+/// quality.md's taper of the quad a b c d (counter-clockwise): the smallest corner triangle
+/// over their mean (0 for a quad of no positive area).
+double quad_taper(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
+
 /// True when the open segments pq and rt cross or touch (a shared end point does not count;
 /// collinear ones only when they overlap, within rounding).
 bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t);

@@ -134,6 +134,7 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
   stage("refill");
   r.stats.cavity_refills = refill_cavities(part, r.mesh, options.smooth,
                                            r.adaptive ? kRefillBelowAdaptive : kRefillBelowUniform);
+  r.stats.slid_nodes = slide_boundary_nodes(part, r.mesh);
   r.times.refill = clock.lap();
   if (options.smooth > 0) {
     stage("smooth");

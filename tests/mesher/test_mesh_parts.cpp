@@ -447,6 +447,19 @@ TEST_CASE("a strip's right-angle bend is one quad at its reflex corner, not two"
   });
 }
 
+TEST_CASE("a rail's foot beside an arc point slides along the arc", "[mesh][slide]") {
+  // plate_with_hole: rails from the axis landed on the hole's arc 0.013 h from an arc point;
+  // the quad on that piece had an edge 70 times shorter than its others (taper 0.07, edge
+  // ratio 71.9). slide_boundary_nodes moves such a foot along the circle: edge ratio at most
+  // 7.1, taper <= 0.8 5.4% -> 4.8%, as many quads.
+  for (const MeshPartResult& r :
+       check_three_poses(read_brep_json(cases_dir() + "/plate_with_hole.json"), 0.84)) {
+    CHECK(r.stats.slid_nodes > 0);
+    CHECK(r.quality.measures[7].worst < 10.0);  // edge ratio
+    CHECK(r.quality.measures[2].bad_percent < 5.2);
+  }
+}
+
 TEST_CASE("the face round a fillet's centre is cut along the axis", "[mesh][face]") {
   // A 20 x 10 plate with corner fillets of radius 3.5 at h = 1: round each fillet's centre the
   // face between the arc's fan and the next tracks has a corner of 270 degrees, which no plain

@@ -50,6 +50,7 @@ struct QuadStats {
   std::size_t edge_flips = 0;       ///< quad pairs re-split by flip_edges
   std::size_t thin_rows = 0;        ///< chains merged by merge_thin_rows
   std::size_t corner_kites = 0;     ///< kites folded by fold_corner_kites
+  std::size_t slid_nodes = 0;       ///< boundary nodes moved by slide_boundary_nodes
   std::size_t cavity_refills = 0;   ///< cavities round bad quads filled again (refill_cavities)
   std::size_t loop_bridges = 0;     ///< loops no rail reached, joined by two bridge rails
   std::size_t disk_patches = 0;     ///< patches whose rails all met at one point: one face
@@ -93,6 +94,15 @@ std::size_t merge_thin_rows(const Part& part, QuadMesh& mesh);
 /// them take the vertex instead (the two quads at it become one), when the worst corner of the
 /// quads made beats the worst of those replaced by 0.02. Returns the folds made.
 std::size_t fold_corner_kites(const Part& part, QuadMesh& mesh);
+
+/// Boundary nodes slid apart (docs/mesher.md, "Sliding boundary nodes"), run after the
+/// re-fill: a node on an arc of one patch's boundary (no B-Rep vertex, not shared) whose
+/// shorter boundary edge is below 0.2 x its longer one moves along the circle through it and
+/// its two boundary neighbours to the one of 15 even positions between them where the worst
+/// min(scaled Jacobian, taper) of its quads is best, when that beats where it is by 0.05 and
+/// leaves their worst scaled Jacobian no lower, or at least 0.6. Nodes and quads are not added
+/// or removed. Returns the nodes moved.
+std::size_t slide_boundary_nodes(const Part& part, QuadMesh& mesh);
 
 /// Cavity re-fill (docs/mesher.md, "Cavity re-fill"), run after the flips and before the
 /// smoothing: round the worst quads below `below` of each patch (at most 32 + 1/50 of its

@@ -1,0 +1,151 @@
+// Boundary nodes slid apart (docs/mesher.md, "Sliding boundary nodes"). A rail's foot may land
+// a hundredth of an element from an arc point or another foot (a hole's arc: 0.013 h on
+// plate_with_hole): the quad on that piece has an edge 70 times shorter than its others,
+// taper 0.07, edge ratio 70. Such a foot slides along its arc (the circle through it and its
+// two boundary neighbours) to where the worst of its quads is best. After the re-fill, before
+// the smoothing: the counts are settled, and the re-fill's choices do not see the slide.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "fill.hpp"
+#include "laytracks/mesher/build_quads.hpp"
+#include "patch_quads.hpp"
+
+namespace laytracks {
+
+using namespace mesher_detail;
+
+namespace {
+
+/// A boundary node slides when its shorter boundary edge is below this x its longer one.
+constexpr double kSlideTiny = 0.2;
+/// Where it may go: this many positions, evenly along its boundary between its two neighbours
+/// (fractions 1/(n+1) .. n/(n+1) of the way).
+constexpr int kSlideSteps = 15;
+/// A slide is kept when it raises the worst min(scaled Jacobian, taper) of the node's quads by
+/// this (measured before the smoothing, on nodes that agree between poses to 1e-12).
+constexpr double kSlideGain = 0.05;
+/// ... and lowers their worst scaled Jacobian only when it stays above this. Without a floor
+/// cover_bosses kept two slivers of edge ratio 70 (the slide gave 0.62 from 0.71); with none
+/// at all, worst corners fell on more of the test sets.
+constexpr double kSlideJacobianFloor = 0.6;
+/// Three points on one line: the sine of the angle at the middle one at most this.
+constexpr double kSlideStraightSine = 1e-9;
+
+}  // namespace
+
+std::size_t slide_boundary_nodes(const Part& part, QuadMesh& mesh) {
+  const std::vector<bool> pinned = pinned_nodes(mesh);
+  const std::vector<bool> shared = shared_nodes(mesh);
+  const std::vector<bool> vertex = vertex_nodes(part, mesh);
+  std::vector<std::vector<std::uint32_t>> around(mesh.nodes.size());
+  for (std::uint32_t q = 0; q < mesh.elements.size(); ++q)
+    if (mesh.elements[q].is_quad())
+      for (std::uint32_t v : mesh.elements[q].nodes) around[v].push_back(q);
+  std::size_t slid = 0;
+  for (std::uint32_t f = 0; f < mesh.nodes.size(); ++f) {
+    if (!pinned[f] || shared[f] || vertex[f] || around[f].empty()) continue;
+    const PatchId patch = mesh.elements[around[f][0]].patch;
+    if (std::any_of(around[f].begin(), around[f].end(),
+                    [&](std::uint32_t q) { return mesh.elements[q].patch != patch; }))
+      continue;
+    // Its boundary neighbours: across the edges from it that one quad has.
+    std::vector<std::uint32_t> ends;
+    for (std::uint32_t q : around[f]) {
+      const auto& x = mesh.elements[q].nodes;
+      std::size_t i = 0;
+      while (x[i] != f) ++i;
+      for (std::uint32_t n : {x[(i + 1) % 4], x[(i + 3) % 4]}) {
+        int uses = 0;
+        for (std::uint32_t r : around[f]) {
+          const auto& y = mesh.elements[r].nodes;
+          if (std::find(y.begin(), y.end(), n) != y.end()) ++uses;
+        }
+        if (uses == 1) ends.push_back(n);
+      }
+    }
+    if (ends.size() != 2 || ends[0] == ends[1]) continue;
+    const Frame& frame = part.patches[patch.index()].frame;
+    const auto at2 = [&](std::uint32_t v) { return frame.to_2d(mesh.nodes[v]); };
+    const Vec2 p1 = at2(ends[0]), pf = at2(f), p2 = at2(ends[1]);
+    const double d1 = norm(pf - p1), d2 = norm(p2 - pf);
+    if (!(std::min(d1, d2) < kSlideTiny * std::max(d1, d2))) continue;
+    // Its boundary: the circle through it and its neighbours (on a line it is no arc).
+    const Vec2 u = pf - p1, w = p2 - pf;
+    if (std::abs(cross(u, w)) <= kSlideStraightSine * norm(u) * norm(w)) continue;
+    Vec2 centre{};
+    double a1 = 0.0, sweep = 0.0, radius = 0.0;
+    {
+      // The circumcentre of p1, pf, p2.
+      const double dd = 2.0 * cross(pf - p1, p2 - p1);
+      const double b2 = dot(pf - p1, pf - p1), c2 = dot(p2 - p1, p2 - p1);
+      const Vec2 b = pf - p1, c = p2 - p1;
+      centre = p1 + Vec2{(c.y * b2 - b.y * c2) / dd, (b.x * c2 - c.x * b2) / dd};
+      radius = norm(p1 - centre);
+      a1 = std::atan2(p1.y - centre.y, p1.x - centre.x);
+      const auto turn = [&](Vec2 p) {  // angle from p1 to p, in the sense p1 -> pf -> p2
+        double t = std::atan2(p.y - centre.y, p.x - centre.x) - a1;
+        const double s = cross(pf - p1, p2 - p1) > 0.0 ? 1.0 : -1.0;  // counter-clockwise?
+        t *= s;
+        while (t < 0.0) t += 2.0 * kPi;
+        while (t >= 2.0 * kPi) t -= 2.0 * kPi;
+        return s * t;
+      };
+      sweep = turn(p2);
+    }
+    const auto point = [&](double s) {
+      const double a = a1 + s * sweep;
+      return Vec2{centre.x + radius * std::cos(a), centre.y + radius * std::sin(a)};
+    };
+    // The node's quads, read counter-clockwise in the frame whatever its sense.
+    double area = 0.0;
+    {
+      const auto& x = mesh.elements[around[f][0]].nodes;
+      for (std::size_t i = 0; i < 4; ++i) area += cross(at2(x[i]), at2(x[(i + 1) % 4]));
+    }
+    const double sense = area > 0.0 ? 1.0 : -1.0;
+    // The worst min(scaled Jacobian, taper) of the node's quads with the node at `at`, and
+    // their worst scaled Jacobian.
+    const auto score = [&](Vec2 at, double& jacobian) {
+      double worst = std::numeric_limits<double>::infinity();
+      jacobian = worst;
+      for (std::uint32_t q : around[f]) {
+        std::array<Vec2, 4> p;
+        for (std::size_t i = 0; i < 4; ++i) {
+          const std::uint32_t v = mesh.elements[q].nodes[i];
+          const Vec2 x = v == f ? at : at2(v);
+          p[i] = Vec2{x.x, sense * x.y};
+        }
+        const double j = min_scaled_jacobian(p[0], p[1], p[2], p[3]);
+        jacobian = std::min(jacobian, j);
+        worst = std::min({worst, j, quad_taper(p[0], p[1], p[2], p[3])});
+      }
+      jacobian = settled(jacobian);
+      return settled(worst);
+    };
+    double jacobian_now = 0.0;
+    const double now = score(pf, jacobian_now);
+    double best = now;
+    std::optional<Vec2> to;
+    for (int k = 1; k <= kSlideSteps; ++k) {
+      const Vec2 at = point(static_cast<double>(k) / (kSlideSteps + 1));
+      double jacobian = 0.0;
+      const double s = score(at, jacobian);
+      // No worse a corner, or none below kSlideJacobianFloor.
+      if (s > best && jacobian >= std::min(jacobian_now, kSlideJacobianFloor)) {
+        best = s;
+        to = at;
+      }
+    }
+    if (!to || !(best >= now + kSlideGain)) continue;
+    mesh.nodes[f] = frame.to_3d(*to);
+    ++slid;
+  }
+  return slid;
+}
+
+}  // namespace laytracks
