@@ -460,6 +460,17 @@ TEST_CASE("a rail's foot beside an arc point slides along the arc", "[mesh][slid
   }
 }
 
+TEST_CASE("a rail's foot beside a vertex of a polygonal outline slides along its edge",
+          "[mesh][slide]") {
+  // cgal_sample_0: rail feet landed 0.01-0.05 of the next piece from vertices of its outline;
+  // the quads on those pieces had edge ratios up to 85. kSlideTinyLine: at most 12.
+  for (const MeshPartResult& r :
+       check_three_poses(read_brep_json(cases_dir() + "/external/cgal_sample_0.json"), 0.45)) {
+    CHECK(r.stats.slid_nodes > 0);
+    CHECK(r.quality.measures[7].worst < 15.0);  // edge ratio
+  }
+}
+
 TEST_CASE("the face round a fillet's centre is cut along the axis", "[mesh][face]") {
   // A 20 x 10 plate with corner fillets of radius 3.5 at h = 1: round each fillet's centre the
   // face between the arc's fan and the next tracks has a corner of 270 degrees, which no plain
