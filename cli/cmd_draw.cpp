@@ -1,5 +1,5 @@
 // laytracks draw PART.json --stage medial|corridors|tracks|mesh -o OUT.svg [meshing options]
-//                [--view unfolded|oblique]
+//                [--view unfolded|oblique] [--measure jacobian|taper|skew|aspect|edge-ratio]
 #include <iostream>
 #include <memory>
 
@@ -19,7 +19,7 @@ namespace laytracks::cli {
 const char* const kDrawHelp =
     "usage: laytracks draw PART.json --stage medial|corridors|tracks|mesh -o OUT.svg\n"
     "                      [--size W | --adaptive ...] [--smooth N] [--view unfolded|oblique]\n"
-    "                      [--chord-tol T]\n"
+    "                      [--measure M] [--chord-tol T]\n"
     "\n"
     "Draws a stage as SVG: one panel per patch in its own plane (unfolded), or, for corridors,\n"
     "tracks and mesh, the whole part in an oblique view (the default for parts of several\n"
@@ -35,11 +35,17 @@ const char* const kDrawHelp =
     "             mesh, and nothing is written.\n"
     "\n"
     "  --view V         unfolded or oblique\n"
+    "  --measure M      mesh: colour the quads by another measure of quality.md instead:\n"
+    "                   taper (0 to 1, bad <= 0.8), skew (90 to 0 degrees, bad >= 30),\n"
+    "                   aspect (10 to 1, bad >= 5) or edge-ratio (10 to 1, bad >= 5); the\n"
+    "                   default, jacobian, is the scaled Jacobian (0 to 1, bad <= 0.2).\n"
+    "                   Dark blue is the bad end, yellow the ideal; the bar marks the threshold\n"
+    "                   and the element farthest from ideal\n"
     "The meshing options, as in `laytracks mesh` (tracks and mesh):\n"
     LAYTRACKS_MESHING_OPTIONS_HELP;
 
 int run_draw(const std::vector<std::string>& argv) {
-  const Args args = meshing_args(argv, {"--stage", "-o", "--view"}, {});
+  const Args args = meshing_args(argv, {"--stage", "-o", "--view", "--measure"}, {});
   if (args.positional().size() != 1) throw UsageError("draw needs exactly one PART.json");
   const auto out = args.value("-o");
   if (!out) throw UsageError("draw needs -o OUT.svg");
@@ -50,6 +56,14 @@ int run_draw(const std::vector<std::string>& argv) {
   if (stage != "mesh" && args.value("--smooth")) {
     throw UsageError("--smooth is for --stage mesh only");
   }
+  const std::string measure = args.value("--measure").value_or("jacobian");
+  if (stage != "mesh" && args.value("--measure")) {
+    throw UsageError("--measure is for --stage mesh only");
+  }
+  if (measure != "jacobian" && measure != "taper" && measure != "skew" && measure != "aspect" &&
+      measure != "edge-ratio") {
+    throw UsageError("--measure is jacobian, taper, skew, aspect or edge-ratio");
+  }
   const std::optional<std::string> view_arg = args.value("--view");
   if (view_arg && *view_arg != "oblique" && *view_arg != "unfolded") {
     throw UsageError("--view is unfolded or oblique");
@@ -59,9 +73,9 @@ int run_draw(const std::vector<std::string>& argv) {
   const std::string view = view_arg.value_or(part.patches.size() > 1 ? "oblique" : "unfolded");
   if (stage == "mesh") {
     const MeshPartResult r = mesh_part(part, options.mesh);
-    const std::vector<double> jac = element_scaled_jacobians(part, r.mesh);
+    const MeshColouring colouring = colour_by(measure, part, r.mesh);
     write_file_atomically(*out, [&](std::ostream& o) {
-      write_mesh_svg(o, part, r.mesh, jac,
+      write_mesh_svg(o, part, r.mesh, colouring,
                      view == "oblique" ? MeshView::kOblique : MeshView::kUnfolded);
     });
     return kOk;

@@ -38,9 +38,13 @@ std::vector<Vec3> corners(const QuadMesh& mesh, std::size_t e) {
   return pts;
 }
 
-std::string fill_of(double jacobian) {
-  return ramp_colour(std::isfinite(jacobian) ? std::clamp(jacobian, 0.0, 1.0) : 0.0);
+/// Where value v lies on the colour ramp: 0 at c.worst, 1 at c.ideal.
+double ramp_at(const MeshColouring& c, double v) {
+  if (!std::isfinite(v)) return 0.0;
+  return std::clamp((v - c.worst) / (c.ideal - c.worst), 0.0, 1.0);
 }
+
+std::string fill_of(const MeshColouring& c, double v) { return ramp_colour(ramp_at(c, v)); }
 
 /// Outline width in pixels for the elements of a patch: thin enough that small elements still
 /// show their colour (about 6% of a typical element's side), never invisible.
@@ -67,7 +71,7 @@ std::string format(const char* fmt, double v) {
 void legend(SvgDocument& svg,
             double y,
             const QuadMesh& mesh,
-            const std::vector<double>& jacobian,
+            const MeshColouring& c,
             const std::string& view) {
   const double x0 = 10.0;
   const double w = 240.0;
@@ -75,22 +79,31 @@ void legend(SvgDocument& svg,
     svg.rect({x0 + 2.0 * i, y}, {x0 + 2.0 * (i + 1), y + 14.0}, ramp_colour(i / 119.0), "none");
   }
   svg.rect({x0, y}, {x0 + w, y + 14.0}, "none", "#222");
-  const double bad = QualityThresholds::kScaledJacobian;
-  svg.polyline({{x0 + w * bad, y - 3.0}, {x0 + w * bad, y + 17.0}}, "#d62728", 1.5);
-  double lowest = std::numeric_limits<double>::infinity();
-  for (double j : jacobian) lowest = std::min(lowest, std::isfinite(j) ? j : 0.0);
-  if (!jacobian.empty()) {
-    const double at = x0 + w * std::clamp(lowest, 0.0, 1.0);
+  const double bad_at = x0 + w * ramp_at(c, c.bad);
+  svg.polyline({{bad_at, y - 3.0}, {bad_at, y + 17.0}}, "#d62728", 1.5);
+  // The element farthest from ideal, non-finite values counting as `worst`.
+  double extreme = std::numeric_limits<double>::quiet_NaN();
+  for (double v : c.value) {
+    const double x = std::isfinite(v) ? v : c.worst;
+    if (std::isnan(extreme) || ramp_at(c, x) < ramp_at(c, extreme) ||
+        (ramp_at(c, x) == ramp_at(c, extreme) && std::abs(x - c.ideal) > std::abs(extreme - c.ideal)))
+      extreme = x;
+  }
+  if (!c.value.empty()) {
+    const double at = x0 + w * ramp_at(c, extreme);
     svg.polyline({{at - 4.0, y + 22.0}, {at, y + 15.0}, {at + 4.0, y + 22.0}}, "#222", 1.2);
   }
-  svg.text({x0, y + 32.0}, "0", 10.0, "middle");
-  svg.text({x0 + w * bad, y + 32.0}, format("%g", bad), 10.0, "middle");
-  svg.text({x0 + w * 0.5, y + 32.0}, "0.5", 10.0, "middle");
-  svg.text({x0 + w, y + 32.0}, "1", 10.0, "middle");
+  svg.text({x0, y + 32.0}, format("%g", c.worst), 10.0, "middle");
+  svg.text({bad_at, y + 32.0}, format("%g", c.bad), 10.0, "middle");
+  svg.text({x0 + w * 0.5, y + 32.0}, format("%g", 0.5 * (c.worst + c.ideal)), 10.0, "middle");
+  svg.text({x0 + w, y + 32.0}, format("%g", c.ideal), 10.0, "middle");
   std::size_t quads = 0;
   for (const MeshElement& el : mesh.elements) quads += el.is_quad() ? 1u : 0u;
-  std::string label = "scaled Jacobian (bad <= " + format("%g", bad) + ", red)";
-  if (!jacobian.empty()) label += ": smallest " + format("%.3f", lowest) + " (marked)";
+  std::string label = c.name + " (bad " + c.bad_when + " " + format("%g", c.bad) + ", red)";
+  if (!c.value.empty()) {
+    label += std::string(c.worst < c.ideal ? ": smallest " : ": largest ") +
+             format("%.3f", extreme) + " (marked)";
+  }
   svg.text({x0 + w + 14.0, y + 11.0}, label, 12.0);
   const std::size_t triangles = mesh.elements.size() - quads;
   svg.text({x0, y + 50.0},
@@ -103,7 +116,7 @@ void legend(SvgDocument& svg,
 void write_unfolded(std::ostream& out,
                     const Part& part,
                     const QuadMesh& mesh,
-                    const std::vector<double>& jacobian) {
+                    const MeshColouring& colouring) {
   const std::size_t n = part.patches.size();
   const PatchGrid grid(n);
   SvgDocument svg(grid.width(), grid.height() + kLegendHeight);
@@ -127,7 +140,7 @@ void write_unfolded(std::ostream& out,
     for (const Vec3& x : corners(mesh, e)) {
       pts.push_back(panels[p].map(part.patches[p].frame.to_2d(x)));
     }
-    svg.polyline(pts, "#333", outline[p], true, fill_of(jacobian[e]));
+    svg.polyline(pts, "#333", outline[p], true, fill_of(colouring, colouring.value[e]));
   }
   for (std::size_t p = 0; p < n; ++p) {
     for (const auto& loop : part.patches[p].polygon.loops) {
@@ -136,14 +149,14 @@ void write_unfolded(std::ostream& out,
       svg.polyline(closed_run(std::move(pts)), "#000", 1.8);
     }
   }
-  legend(svg, grid.height() + 8.0, mesh, jacobian, "unfolded");
+  legend(svg, grid.height() + 8.0, mesh, colouring, "unfolded");
   out << svg.str();
 }
 
 void write_oblique(std::ostream& out,
                    const Part& part,
                    const QuadMesh& mesh,
-                   const std::vector<double>& jacobian) {
+                   const MeshColouring& colouring) {
   const ObliqueCamera cam;
   Box2 box;
   for (const BrepVertex& v : part.vertices) box.add(cam.screen(v.position));
@@ -168,7 +181,7 @@ void write_oblique(std::ostream& out,
     for (const std::size_t e : by_patch[p]) {
       std::vector<Vec2> pts;
       for (const Vec3& x : corners(mesh, e)) pts.push_back(panel.map(cam.screen(x)));
-      svg.polyline(pts, "#333", width, true, fill_of(jacobian[e]));
+      svg.polyline(pts, "#333", width, true, fill_of(colouring, colouring.value[e]));
     }
     for (const auto& loop : patch.polygon.loops) {
       std::vector<Vec2> pts;
@@ -176,11 +189,65 @@ void write_oblique(std::ostream& out,
       svg.polyline(closed_run(std::move(pts)), "#000", 1.6);
     }
   }
-  legend(svg, size + 8.0, mesh, jacobian, "oblique");
+  legend(svg, size + 8.0, mesh, colouring, "oblique");
   out << svg.str();
 }
 
 }  // namespace
+
+MeshColouring colour_by(const std::string& measure, const Part& part, const QuadMesh& mesh) {
+  using T = QualityThresholds;
+  MeshColouring c;
+  if (measure == "jacobian") {
+    c = {"scaled Jacobian", {}, 0.0, 1.0, T::kScaledJacobian, "<="};
+  } else if (measure == "taper") {
+    c = {"taper", {}, 0.0, 1.0, T::kTaper, "<="};
+  } else if (measure == "skew") {
+    c = {"skew [deg]", {}, 90.0, 0.0, T::kSkewDeg, ">="};
+  } else if (measure == "aspect") {
+    c = {"aspect ratio", {}, 10.0, 1.0, T::kAspectRatio, ">="};
+  } else if (measure == "edge-ratio") {
+    c = {"edge ratio", {}, 10.0, 1.0, T::kEdgeRatio, ">="};
+  } else {
+    throw Error("no measure '" + measure + "' to colour by: jacobian, taper, skew, aspect or edge-ratio");
+  }
+  c.value.reserve(mesh.elements.size());
+  for (std::size_t e = 0; e < mesh.elements.size(); ++e) {
+    check_element(part, mesh, e);
+    const MeshElement& el = mesh.elements[e];
+    if (!el.is_quad()) {  // a triangle (a mesh from elsewhere) is drawn as the worst
+      c.value.push_back(std::numeric_limits<double>::quiet_NaN());
+      continue;
+    }
+    const QuadQuality q = measure_quad({mesh.nodes[el.nodes[0]], mesh.nodes[el.nodes[1]],
+                                        mesh.nodes[el.nodes[2]], mesh.nodes[el.nodes[3]]},
+                                       part.patches[el.patch.index()].frame.n);
+    c.value.push_back(measure == "jacobian" ? q.scaled_jacobian
+                      : measure == "taper"  ? q.taper
+                      : measure == "skew"   ? q.skew_deg
+                      : measure == "aspect" ? q.aspect_ratio
+                                            : q.edge_ratio);
+  }
+  return c;
+}
+
+void write_mesh_svg(std::ostream& out,
+                    const Part& part,
+                    const QuadMesh& mesh,
+                    const MeshColouring& colouring,
+                    MeshView view) {
+  if (colouring.value.size() != mesh.elements.size()) {
+    throw Error("cannot draw the mesh: " + std::to_string(colouring.value.size()) + " " +
+                colouring.name + " values for " + std::to_string(mesh.elements.size()) +
+                " elements");
+  }
+  for (std::size_t e = 0; e < mesh.elements.size(); ++e) check_element(part, mesh, e);
+  if (view == MeshView::kOblique) {
+    write_oblique(out, part, mesh, colouring);
+  } else {
+    write_unfolded(out, part, mesh, colouring);
+  }
+}
 
 void write_mesh_svg(std::ostream& out,
                     const Part& part,
@@ -191,12 +258,9 @@ void write_mesh_svg(std::ostream& out,
     throw Error("cannot draw the mesh: " + std::to_string(scaled_jacobian.size()) +
                 " scaled Jacobians for " + std::to_string(mesh.elements.size()) + " elements");
   }
-  for (std::size_t e = 0; e < mesh.elements.size(); ++e) check_element(part, mesh, e);
-  if (view == MeshView::kOblique) {
-    write_oblique(out, part, mesh, scaled_jacobian);
-  } else {
-    write_unfolded(out, part, mesh, scaled_jacobian);
-  }
+  const MeshColouring c{"scaled Jacobian", scaled_jacobian, 0.0, 1.0,
+                        QualityThresholds::kScaledJacobian, "<="};
+  write_mesh_svg(out, part, mesh, c, view);
 }
 
 }  // namespace laytracks

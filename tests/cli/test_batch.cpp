@@ -278,6 +278,48 @@ TEST_CASE("draw --stage mesh writes well-formed SVG, one polygon per quad", "[cl
   }
 }
 
+TEST_CASE("draw --stage mesh --measure colours the quads by another measure", "[cli][draw]") {
+  const fs::path d = fresh_dir("draw-measure");
+  const std::string part = cases_dir() + "/plate_with_hole.json";
+  const std::size_t quads = quads_of(part, d);
+  struct Case {
+    std::string measure, legend;
+  };
+  for (const Case& c : {Case{"taper", "taper (bad &lt;= 0.8, red): smallest "},
+                        Case{"skew", "skew [deg] (bad &gt;= 30, red): largest "},
+                        Case{"aspect", "aspect ratio (bad &gt;= 5, red): largest "},
+                        Case{"edge-ratio", "edge ratio (bad &gt;= 5, red): largest "},
+                        Case{"jacobian", "scaled Jacobian (bad &lt;= 0.2, red): smallest "}}) {
+    CAPTURE(c.measure);
+    const fs::path svg = d / (c.measure + ".svg");
+    const Run r = run("draw " + q(part) + " --stage mesh --measure " + c.measure + " -o " + q(svg));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const std::string text = slurp(svg);
+    CHECK_THAT(text, Catch::Contains(c.legend));
+    std::size_t polygons = 0;
+    for (auto at = text.find("<polygon "); at != std::string::npos;
+         at = text.find("<polygon ", at + 1)) {
+      ++polygons;
+    }
+    CHECK(polygons == quads);
+  }
+  // The default is the scaled Jacobian, byte for byte.
+  REQUIRE(run("draw " + q(part) + " --stage mesh -o " + q(d / "default.svg")).status == 0);
+  CHECK(slurp(d / "default.svg") == slurp(d / "jacobian.svg"));
+  // Taper and the Jacobian colour the same quads differently.
+  CHECK(slurp(d / "taper.svg") != slurp(d / "jacobian.svg"));
+  // A measure it does not know, or one for another stage: usage errors, nothing written.
+  const fs::path e = fresh_dir("draw-measure-bad");
+  const Run bogus = run("draw " + q(part) + " --stage mesh --measure warp -o " + q(e / "a.svg"));
+  CHECK(bogus.status == 2);
+  CHECK_THAT(bogus.err, Catch::Contains("--measure is jacobian, taper, skew, aspect or edge-ratio"));
+  const Run stage = run("draw " + q(part) + " --stage tracks --measure taper -o " + q(e / "b.svg"));
+  CHECK(stage.status == 2);
+  CHECK_THAT(stage.err, Catch::Contains("--measure is for --stage mesh only"));
+  CHECK(listing(e).empty());
+}
+
 TEST_CASE("draw --stage mesh writes nothing for a part it cannot mesh", "[cli][draw]") {
   const fs::path d = fresh_dir("draw-mesh-refused");
   const Run malformed = run("draw " + q(test_data_dir() + "/invalid/non_planar.json") +
