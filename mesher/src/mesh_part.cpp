@@ -134,22 +134,27 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
   stage("refill");
   r.stats.cavity_refills = refill_cavities(part, r.mesh, options.smooth,
                                            r.adaptive ? kRefillBelowAdaptive : kRefillBelowUniform);
-  r.stats.slid_nodes = slide_boundary_nodes(part, r.mesh);
   r.times.refill = clock.lap();
   if (options.smooth > 0) {
     stage("smooth");
     r.before_smoothing = summarize(part, r.mesh);
     smooth_mesh(part, r.mesh, options.smooth);
+    // Rail feet crowding an arc point or a vertex slid apart along the boundary, judged on
+    // the smoothed quads (counts do not change).
+    std::vector<std::uint32_t> slid;
+    r.stats.slid_nodes = slide_boundary_nodes(part, r.mesh, &slid);
     // Smoothing moves the nodes the flips were judged on: flip again where that now helps,
     // and smooth what changed.
     std::vector<std::uint32_t> flipped;
     const std::size_t again = flip_edges(part, r.mesh, &flipped);
     r.stats.edge_flips += again;
-    if (again > 0) {
-      // Only round what changed: the nodes within kResmoothRings rings of the flipped quads.
+    if (again > 0 || !slid.empty()) {
+      // Only round what changed: the nodes within kResmoothRings rings of the flipped quads
+      // and of the slid nodes.
       std::vector<bool> movable(r.mesh.nodes.size(), false);
       for (std::uint32_t q : flipped)
         for (std::uint32_t v : r.mesh.elements[q].nodes) movable[v] = true;
+      for (std::uint32_t v : slid) movable[v] = true;
       for (int ring = 1; ring < kResmoothRings; ++ring) {
         std::vector<bool> next = movable;
         for (const MeshElement& e : r.mesh.elements) {
@@ -162,6 +167,8 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
       smooth_mesh(part, r.mesh, options.smooth, &movable);
     }
     r.times.smooth = clock.lap();
+  } else {
+    r.stats.slid_nodes = slide_boundary_nodes(part, r.mesh);
   }
   stage("check");
   r.check = check_mesh(part, r.mesh);

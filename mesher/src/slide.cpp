@@ -2,9 +2,10 @@
 // a hundredth of an element from an arc point or another foot (a hole's arc: 0.013 h on
 // plate_with_hole), or from a vertex of a polygonal outline: the quad on that piece has an
 // edge 70 times shorter than its others, taper 0.07, edge ratio 70. Such a foot slides along
-// its boundary (the line, or the circle through it and its two boundary neighbours) to where
-// the worst of its quads is best. After the re-fill, before the smoothing: the counts are
-// settled, and the re-fill's choices do not see the slide.
+// its boundary (the line through its two boundary neighbours, or its arc) to where
+// the worst of its quads is best. After the smoothing (and then smoothed round, as the late
+// flips are): judged on the smoothed quads; nodes and quads are not added or removed, so
+// the counts are the re-fill's, the same in every pose.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -25,7 +26,7 @@ namespace {
 /// A boundary node on an arc slides when its shorter boundary edge is below this x its longer
 /// one; on a straight edge, below kSlideTinyLine x. Pieces of a tenth slid on straight edges
 /// lowered worst corners after the smoothing (the adaptive bracket 0.451 -> 0.397); those of a
-/// twentieth are the polygonal outlines' slivers (cgal_complex_1: edge ratio 94 -> 45,
+/// twentieth are the polygonal outlines' slivers (cgal_complex_1: edge ratio 94 -> 33,
 /// cgal_sample_0: 85 -> 12), and no worst corner fell.
 constexpr double kSlideTiny = 0.2;
 constexpr double kSlideTinyLine = 0.05;
@@ -33,7 +34,7 @@ constexpr double kSlideTinyLine = 0.05;
 /// (fractions 1/(n+1) .. n/(n+1) of the way).
 constexpr int kSlideSteps = 15;
 /// A slide is kept when it raises the worst min(scaled Jacobian, taper) of the node's quads by
-/// this (measured before the smoothing, on nodes that agree between poses to 1e-12).
+/// this.
 constexpr double kSlideGain = 0.05;
 /// ... and lowers their worst scaled Jacobian only when it stays above this. Without a floor
 /// cover_bosses kept two slivers of edge ratio 70 (the slide gave 0.62 from 0.71); with none
@@ -41,10 +42,13 @@ constexpr double kSlideGain = 0.05;
 constexpr double kSlideJacobianFloor = 0.6;
 /// Three points on one line: the sine of the angle at the middle one at most this.
 constexpr double kSlideStraightSine = 1e-9;
+/// A node is on an arc when its distance from the arc's circle is at most this x the part's
+/// size (and its angle within the arc's span, to this in radians).
+constexpr double kSlideOnArc = 1e-7;
 
 }  // namespace
 
-std::size_t slide_boundary_nodes(const Part& part, QuadMesh& mesh) {
+std::size_t slide_boundary_nodes(const Part& part, QuadMesh& mesh, std::vector<std::uint32_t>* moved) {
   const std::vector<bool> pinned = pinned_nodes(mesh);
   const std::vector<bool> shared = shared_nodes(mesh);
   const std::vector<bool> vertex = vertex_nodes(part, mesh);
@@ -80,36 +84,39 @@ std::size_t slide_boundary_nodes(const Part& part, QuadMesh& mesh) {
     const Vec2 p1 = at2(ends[0]), pf = at2(f), p2 = at2(ends[1]);
     const double d1 = norm(pf - p1), d2 = norm(p2 - pf);
     if (!(std::min(d1, d2) < kSlideTiny * std::max(d1, d2))) continue;
-    // Its boundary: the line through its neighbours, or the circle through the three.
+    // Its boundary: the line through its neighbours, or the part's arc through the three (the
+    // positions it may take come from PartArc::at, as every arc node's does).
     const Vec2 u = pf - p1, w = p2 - pf;
     const bool straight = std::abs(cross(u, w)) <= kSlideStraightSine * norm(u) * norm(w);
     if (straight &&
         (dot(u, w) <= 0.0 || !(std::min(d1, d2) < kSlideTinyLine * std::max(d1, d2))))
       continue;
-    Vec2 centre{};
-    double a1 = 0.0, sweep = 0.0, radius = 0.0;
+    const Vec3 x1 = mesh.nodes[ends[0]], x2 = mesh.nodes[ends[1]];
+    const PartArc* arc = nullptr;
+    double u1 = 0.0, u2 = 0.0;
     if (!straight) {
-      // The circumcentre of p1, pf, p2.
-      const double dd = 2.0 * cross(pf - p1, p2 - p1);
-      const double b2 = dot(pf - p1, pf - p1), c2 = dot(p2 - p1, p2 - p1);
-      const Vec2 b = pf - p1, c = p2 - p1;
-      centre = p1 + Vec2{(c.y * b2 - b.y * c2) / dd, (b.x * c2 - c.x * b2) / dd};
-      radius = norm(p1 - centre);
-      a1 = std::atan2(p1.y - centre.y, p1.x - centre.x);
-      const auto turn = [&](Vec2 p) {  // angle from p1 to p, in the sense p1 -> pf -> p2
-        double t = std::atan2(p.y - centre.y, p.x - centre.x) - a1;
-        const double s = cross(pf - p1, p2 - p1) > 0.0 ? 1.0 : -1.0;  // counter-clockwise?
-        t *= s;
-        while (t < 0.0) t += 2.0 * kPi;
-        while (t >= 2.0 * kPi) t -= 2.0 * kPi;
-        return s * t;
+      // The fraction of the arc's angle at x, if x is on the arc's circle and within its span.
+      const auto fraction = [&](const PartArc& a, Vec3 x) -> std::optional<double> {
+        const Vec3 r = x - a.center;
+        if (std::abs(norm(r) - a.radius) > kSlideOnArc * part.size) return std::nullopt;
+        double t = std::atan2(dot(r, a.e2), dot(r, a.e1));
+        if (t < 0.0) t += 2.0 * kPi;
+        if (t > a.span + kSlideOnArc) return std::nullopt;
+        return std::min(t, a.span) / a.span;
       };
-      sweep = turn(p2);
+      for (const PartArc& a : part.arcs) {
+        const auto uf = fraction(a, mesh.nodes[f]), ua = fraction(a, x1), ub = fraction(a, x2);
+        if (uf && ua && ub && std::min(*ua, *ub) < *uf && *uf < std::max(*ua, *ub)) {
+          arc = &a;
+          u1 = *ua;
+          u2 = *ub;
+          break;
+        }
+      }
+      if (!arc) continue;
     }
-    const auto point = [&](double s) {
-      if (straight) return lerp(p1, p2, s);
-      const double a = a1 + s * sweep;
-      return Vec2{centre.x + radius * std::cos(a), centre.y + radius * std::sin(a)};
+    const auto point = [&](double t) {
+      return straight ? x1 + t * (x2 - x1) : arc->at(u1 + (u2 - u1) * t);
     };
     // The node's quads, read counter-clockwise in the frame whatever its sense.
     double area = 0.0;
@@ -140,11 +147,11 @@ std::size_t slide_boundary_nodes(const Part& part, QuadMesh& mesh) {
     double jacobian_now = 0.0;
     const double now = score(pf, jacobian_now);
     double best = now;
-    std::optional<Vec2> to;
+    std::optional<Vec3> to;
     for (int k = 1; k <= kSlideSteps; ++k) {
-      const Vec2 at = point(static_cast<double>(k) / (kSlideSteps + 1));
+      const Vec3 at = point(static_cast<double>(k) / (kSlideSteps + 1));
       double jacobian = 0.0;
-      const double s = score(at, jacobian);
+      const double s = score(frame.to_2d(at), jacobian);
       // No worse a corner, or none below kSlideJacobianFloor.
       if (s > best && jacobian >= std::min(jacobian_now, kSlideJacobianFloor)) {
         best = s;
@@ -152,7 +159,8 @@ std::size_t slide_boundary_nodes(const Part& part, QuadMesh& mesh) {
       }
     }
     if (!to || !(best >= now + kSlideGain)) continue;
-    mesh.nodes[f] = frame.to_3d(*to);
+    mesh.nodes[f] = *to;
+    if (moved) moved->push_back(f);
     ++slid;
   }
   return slid;

@@ -451,12 +451,12 @@ TEST_CASE("a rail's foot beside an arc point slides along the arc", "[mesh][slid
   // plate_with_hole: rails from the axis landed on the hole's arc 0.013 h from an arc point;
   // the quad on that piece had an edge 70 times shorter than its others (taper 0.07, edge
   // ratio 71.9). slide_boundary_nodes moves such a foot along the circle: edge ratio at most
-  // 7.1, taper <= 0.8 5.4% -> 4.8%, as many quads.
+  // 4.2, taper <= 0.8 5.4% -> 4.1%, as many quads.
   for (const MeshPartResult& r :
        check_three_poses(read_brep_json(cases_dir() + "/plate_with_hole.json"), 0.84)) {
     CHECK(r.stats.slid_nodes > 0);
     CHECK(r.quality.measures[7].worst < 10.0);  // edge ratio
-    CHECK(r.quality.measures[2].bad_percent < 5.2);
+    CHECK(r.quality.measures[2].bad_percent < 5.0);
   }
 }
 
