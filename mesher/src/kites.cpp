@@ -15,7 +15,6 @@
 
 #include "fill.hpp"
 #include "laytracks/mesher/build_quads.hpp"
-#include "laytracks/mesher/check.hpp"
 #include "patch_quads.hpp"
 
 namespace laytracks {
@@ -43,10 +42,7 @@ std::size_t fold_corner_kites(const Part& part, QuadMesh& mesh) {
   const std::vector<bool> pinned = pinned_nodes(mesh);
   const std::vector<bool> shared = shared_nodes(mesh);
   const std::vector<bool> vertex = vertex_nodes(part, mesh);
-  std::vector<std::vector<std::uint32_t>> around(mesh.nodes.size());
-  for (std::uint32_t q = 0; q < mesh.elements.size(); ++q)
-    if (mesh.elements[q].is_quad())
-      for (std::uint32_t v : mesh.elements[q].nodes) around[v].push_back(q);
+  const std::vector<std::vector<std::uint32_t>> around = quads_at_mesh_nodes(mesh);
   std::vector<bool> drop(mesh.elements.size(), false);
   std::vector<MeshElement> added;
   std::size_t folds = 0;

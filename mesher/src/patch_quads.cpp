@@ -30,6 +30,14 @@ std::vector<bool> vertex_nodes(const Part& part, const QuadMesh& mesh) {
   return vertex;
 }
 
+std::vector<std::vector<std::uint32_t>> quads_at_mesh_nodes(const QuadMesh& mesh) {
+  std::vector<std::vector<std::uint32_t>> around(mesh.nodes.size());
+  for (std::uint32_t q = 0; q < mesh.elements.size(); ++q)
+    if (mesh.elements[q].is_quad())
+      for (std::uint32_t v : mesh.elements[q].nodes) around[v].push_back(q);
+  return around;
+}
+
 std::vector<bool> shared_nodes(const QuadMesh& mesh) {
   std::vector<std::uint32_t> patch_of(mesh.nodes.size(), kUnset);
   std::vector<bool> shared(mesh.nodes.size(), false);

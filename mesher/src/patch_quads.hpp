@@ -22,6 +22,9 @@ std::vector<bool> pinned_nodes(const QuadMesh& mesh);
 /// The nodes at B-Rep vertices (within the check's kOnBrep x the part's size of one).
 std::vector<bool> vertex_nodes(const Part& part, const QuadMesh& mesh);
 
+/// The quads at each node of the mesh, in element order.
+std::vector<std::vector<std::uint32_t>> quads_at_mesh_nodes(const QuadMesh& mesh);
+
 /// The elements of patch p, in mesh order, over local node ids.
 struct PatchQuads {
   std::vector<std::uint32_t> global;  ///< local node id -> mesh node id

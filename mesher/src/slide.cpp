@@ -52,10 +52,7 @@ std::size_t slide_boundary_nodes(const Part& part, QuadMesh& mesh, std::vector<s
   const std::vector<bool> pinned = pinned_nodes(mesh);
   const std::vector<bool> shared = shared_nodes(mesh);
   const std::vector<bool> vertex = vertex_nodes(part, mesh);
-  std::vector<std::vector<std::uint32_t>> around(mesh.nodes.size());
-  for (std::uint32_t q = 0; q < mesh.elements.size(); ++q)
-    if (mesh.elements[q].is_quad())
-      for (std::uint32_t v : mesh.elements[q].nodes) around[v].push_back(q);
+  const std::vector<std::vector<std::uint32_t>> around = quads_at_mesh_nodes(mesh);
   std::size_t slid = 0;
   for (std::uint32_t f = 0; f < mesh.nodes.size(); ++f) {
     if (!pinned[f] || shared[f] || vertex[f] || around[f].empty()) continue;
