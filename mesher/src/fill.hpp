@@ -248,11 +248,13 @@ constexpr double kUntaperFrom = 0.95;
 
 /// untaper_nodes' second sweeps, at a node with a tapered quad whose move towards the
 /// parallelograms fails: steps down the gradient of its sum, of these fractions of the mean
-/// length of the node's edges, the first that passes. The gradient by central differences of
-/// kUntaperDifference times that length. On the 20 parts taper <= 0.8 13.8% -> 12.6% (the
-/// bracket 14.1% -> 11.4%, the tray 10.4% -> 9.5%), on the 217 generated parts 9.3% -> 8.4%
+/// length of the node's edges (halving from 0.4 to 0.4 / 256), the first that passes. The
+/// gradient by central differences of kUntaperDifference times that length. On the 20 parts
+/// taper <= 0.8 13.8% -> 12.6% with steps of 0.2 to 0.025, 11.9% from 0.4 to 0.0016 (the
+/// bracket 14.1% -> 10.5%); on the 217 generated parts 9.3% -> 8.4%, then 7.9%
 /// (docs/mesher.md, "Taper", "Descent").
-constexpr std::array<double, 4> kUntaperDescent{0.2, 0.1, 0.05, 0.025};
+constexpr std::array<double, 9> kUntaperDescent{0.4,    0.2,     0.1,      0.05,     0.025,
+                                                0.0125, 0.00625, 0.003125, 0.0015625};
 constexpr double kUntaperDifference = 1e-4;
 
 /// A node whose Newton step promises less decrease of its objective than this stays.
