@@ -1,5 +1,6 @@
 // laytracks draw PART.json --stage medial|corridors|tracks|mesh -o OUT.svg [meshing options]
 //                [--view unfolded|oblique] [--measure jacobian|taper|skew|aspect|edge-ratio]
+#include <algorithm>
 #include <iostream>
 #include <memory>
 
@@ -60,8 +61,8 @@ int run_draw(const std::vector<std::string>& argv) {
   if (stage != "mesh" && args.value("--measure")) {
     throw UsageError("--measure is for --stage mesh only");
   }
-  if (measure != "jacobian" && measure != "taper" && measure != "skew" && measure != "aspect" &&
-      measure != "edge-ratio") {
+  const std::vector<std::string>& measures = colour_measures();
+  if (std::find(measures.begin(), measures.end(), measure) == measures.end()) {
     throw UsageError("--measure is jacobian, taper, skew, aspect or edge-ratio");
   }
   const std::optional<std::string> view_arg = args.value("--view");

@@ -195,6 +195,11 @@ void write_oblique(std::ostream& out,
 
 }  // namespace
 
+const std::vector<std::string>& colour_measures() {
+  static const std::vector<std::string> names{"jacobian", "taper", "skew", "aspect", "edge-ratio"};
+  return names;
+}
+
 MeshColouring colour_by(const std::string& measure, const Part& part, const QuadMesh& mesh) {
   using T = QualityThresholds;
   MeshColouring c;
@@ -247,20 +252,6 @@ void write_mesh_svg(std::ostream& out,
   } else {
     write_unfolded(out, part, mesh, colouring);
   }
-}
-
-void write_mesh_svg(std::ostream& out,
-                    const Part& part,
-                    const QuadMesh& mesh,
-                    const std::vector<double>& scaled_jacobian,
-                    MeshView view) {
-  if (scaled_jacobian.size() != mesh.elements.size()) {
-    throw Error("cannot draw the mesh: " + std::to_string(scaled_jacobian.size()) +
-                " scaled Jacobians for " + std::to_string(mesh.elements.size()) + " elements");
-  }
-  const MeshColouring c{"scaled Jacobian", scaled_jacobian, 0.0, 1.0,
-                        QualityThresholds::kScaledJacobian, "<="};
-  write_mesh_svg(out, part, mesh, c, view);
 }
 
 }  // namespace laytracks

@@ -27,9 +27,6 @@ namespace {
 /// three it replaces by this (measured before any smoothing, on the templates' nodes, which
 /// agree between poses to 1e-12: the same folds in every pose).
 constexpr double kKiteGain = 0.02;
-/// The side nodes that go lie on straight boundary: the sine of the angle between their two
-/// boundary edges at most this.
-constexpr double kKiteStraightSine = 1e-9;
 /// A side node is no farther from the corner than this x from its other boundary neighbour:
 /// the boundary edge the fold makes is at most 2.5 x the one beyond. Without the bound a fold
 /// of a piece ten times the edge beyond (a reflex corner of a generated bracket) left a long
@@ -111,20 +108,14 @@ std::size_t fold_corner_kites(const Part& part, QuadMesh& mesh) {
       if (next != g && prev != g) return false;
       const std::uint32_t n = next == g ? prev : next;
       const Vec2 u = at2(n) - at2(f), w = at2(c) - at2(f);
-      return std::abs(cross(u, w)) <= kKiteStraightSine * norm(u) * norm(w) && dot(u, w) < 0.0 &&
-             norm(w) <= kKiteSidePiece * norm(u);
+      return std::abs(cross(u, w)) <= kStraightBoundarySine * norm(u) * norm(w) &&
+             dot(u, w) < 0.0 && norm(w) <= kKiteSidePiece * norm(u);
     };
     if (!straight(f1, g1, e1) || !straight(f2, g2, e2)) continue;
-    // The quads as they are and as they would be, in the patch frame; the frame may turn them
-    // clockwise, so they are read with the corner quad's sense.
-    const Quad& k0 = corner.nodes;
-    double area = 0.0;
-    for (std::size_t i = 0; i < 4; ++i) area += cross(at2(k0[i]), at2(k0[(i + 1) % 4]));
-    const double sense = area > 0.0 ? 1.0 : -1.0;
+    // The quads as they are and as they would be, in the patch frame (where every element
+    // runs counter-clockwise: the frame's normal is the patch's).
     const auto jacobian = [&](const Quad& x) {
-      std::array<Vec2, 4> p;
-      for (std::size_t i = 0; i < 4; ++i) p[i] = Vec2{at2(x[i]).x, sense * at2(x[i]).y};
-      return min_scaled_jacobian(p[0], p[1], p[2], p[3]);
+      return min_scaled_jacobian(at2(x[0]), at2(x[1]), at2(x[2]), at2(x[3]));
     };
     const auto replaced = [&](Quad x, std::uint32_t f) {
       std::replace(x.begin(), x.end(), f, c);

@@ -22,6 +22,11 @@ std::vector<bool> pinned_nodes(const QuadMesh& mesh);
 /// The nodes at B-Rep vertices (within the check's kOnBrep x the part's size of one).
 std::vector<bool> vertex_nodes(const Part& part, const QuadMesh& mesh);
 
+/// Three boundary nodes lie on one line (a straight stretch of boundary, no arc or corner)
+/// when the sine of the angle between their two edges is at most this: the passes that drop
+/// or slide boundary nodes (thin rows, corner kites, slides) keep the boundary as it was.
+constexpr double kStraightBoundarySine = 1e-9;
+
 /// The quads at each node of the mesh, in element order.
 std::vector<std::vector<std::uint32_t>> quads_at_mesh_nodes(const QuadMesh& mesh);
 

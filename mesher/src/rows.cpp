@@ -34,9 +34,6 @@ constexpr double kRowJacobianSlack = 1e-9;
 /// A merged quad less square than its pair is still taken up to this aspect ratio (the end of
 /// a strip: two near-squares become one rectangle of 2).
 constexpr double kRowAspectOk = 3.0;
-/// Boundary nodes that go with the chain lie on a straight boundary: the sine of the angle
-/// between their two boundary edges at most this.
-constexpr double kStraightSine = 1e-9;
 
 /// Aspect ratio as quality.md defines it (measure_quad), of a quad in the patch's plane.
 double quad_aspect(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
@@ -53,10 +50,7 @@ class MeshRows {
   MeshRows(const Part& part, const QuadMesh& mesh, std::vector<bool> through,
            const std::vector<bool>& removable)
       : part_(part), mesh_(mesh), through_(std::move(through)), removable_(removable),
-        around_(mesh.nodes.size()) {
-    for (std::uint32_t q = 0; q < mesh_.elements.size(); ++q)
-      if (mesh_.elements[q].is_quad())
-        for (std::uint32_t v : mesh_.elements[q].nodes) around_[v].push_back(q);
+        around_(quads_at_mesh_nodes(mesh)) {
     // Only where its four quads close round it, each edge at it in two of them, and (on a
     // seam) two of them in each patch.
     for (std::uint32_t v = 0; v < mesh_.nodes.size(); ++v) {
@@ -122,7 +116,8 @@ class MeshRows {
     const Vec3 a = mesh_.nodes[along[0]] - mesh_.nodes[v];
     const Vec3 b = mesh_.nodes[along[1]] - mesh_.nodes[v];
     const Vec3 c = cross(a, b);
-    return dot(a, b) < 0.0 && dot(c, c) <= kStraightSine * kStraightSine * dot(a, a) * dot(b, b);
+    constexpr double k2 = kStraightBoundarySine * kStraightBoundarySine;
+    return dot(a, b) < 0.0 && dot(c, c) <= k2 * dot(a, a) * dot(b, b);
   }
 
   /// Node v of quad q in q's patch frame.
@@ -219,7 +214,8 @@ class MeshRows {
     const Vec2 pe = at(q, e);
     const Vec2 a = at(q, others[0]) - pe, b = at(q, others[1]) - pe;
     const double s = cross(a, b);
-    return dot(a, b) < 0.0 && s * s <= kStraightSine * kStraightSine * dot(a, a) * dot(b, b);
+    constexpr double k2 = kStraightBoundarySine * kStraightBoundarySine;
+    return dot(a, b) < 0.0 && s * s <= k2 * dot(a, a) * dot(b, b);
   }
 
   /// The chain through v, both ways, ends included (boundary nodes that go with it), or round

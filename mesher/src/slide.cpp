@@ -40,8 +40,6 @@ constexpr double kSlideGain = 0.05;
 /// cover_bosses kept two slivers of edge ratio 70 (the slide gave 0.62 from 0.71); with none
 /// at all, worst corners fell on more of the test sets.
 constexpr double kSlideJacobianFloor = 0.6;
-/// Three points on one line: the sine of the angle at the middle one at most this.
-constexpr double kSlideStraightSine = 1e-9;
 /// A node is on an arc when its distance from the arc's circle is at most this x the part's
 /// size (and its angle within the arc's span, to this in radians).
 constexpr double kSlideOnArc = 1e-7;
@@ -84,7 +82,7 @@ std::size_t slide_boundary_nodes(const Part& part, QuadMesh& mesh, std::vector<s
     // Its boundary: the line through its neighbours, or the part's arc through the three (the
     // positions it may take come from PartArc::at, as every arc node's does).
     const Vec2 u = pf - p1, w = p2 - pf;
-    const bool straight = std::abs(cross(u, w)) <= kSlideStraightSine * norm(u) * norm(w);
+    const bool straight = std::abs(cross(u, w)) <= kStraightBoundarySine * norm(u) * norm(w);
     if (straight &&
         (dot(u, w) <= 0.0 || !(std::min(d1, d2) < kSlideTinyLine * std::max(d1, d2))))
       continue;
@@ -115,15 +113,9 @@ std::size_t slide_boundary_nodes(const Part& part, QuadMesh& mesh, std::vector<s
     const auto point = [&](double t) {
       return straight ? x1 + t * (x2 - x1) : arc->at(u1 + (u2 - u1) * t);
     };
-    // The node's quads, read counter-clockwise in the frame whatever its sense.
-    double area = 0.0;
-    {
-      const auto& x = mesh.elements[around[f][0]].nodes;
-      for (std::size_t i = 0; i < 4; ++i) area += cross(at2(x[i]), at2(x[(i + 1) % 4]));
-    }
-    const double sense = area > 0.0 ? 1.0 : -1.0;
     // The worst min(scaled Jacobian, taper) of the node's quads with the node at `at`, and
-    // their worst scaled Jacobian.
+    // their worst scaled Jacobian (in the patch frame, where every element runs
+    // counter-clockwise).
     const auto score = [&](Vec2 at, double& jacobian) {
       double worst = std::numeric_limits<double>::infinity();
       jacobian = worst;
@@ -131,8 +123,7 @@ std::size_t slide_boundary_nodes(const Part& part, QuadMesh& mesh, std::vector<s
         std::array<Vec2, 4> p;
         for (std::size_t i = 0; i < 4; ++i) {
           const std::uint32_t v = mesh.elements[q].nodes[i];
-          const Vec2 x = v == f ? at : at2(v);
-          p[i] = Vec2{x.x, sense * x.y};
+          p[i] = v == f ? at : at2(v);
         }
         const double j = min_scaled_jacobian(p[0], p[1], p[2], p[3]);
         jacobian = std::min(jacobian, j);

@@ -30,36 +30,30 @@ struct MeshColouring {
   const char* bad_when = "<=";  ///< bad at or beyond `bad` on the worst side: "<=" or ">="
 };
 
+/// The names colour_by knows, in the order the help lists them.
+const std::vector<std::string>& colour_measures();
+
 /// The colouring by one measure of quality.md: "jacobian" (scaled Jacobian, 0 to 1, bad <=
 /// 0.2), "taper" (0 to 1, bad <= 0.8), "skew" (90 to 0 degrees, bad >= 30), "aspect" (10 to 1,
 /// bad >= 5) or "edge-ratio" (10 to 1, bad >= 5), each element measured as quality.md says on
 /// its patch's normal. Throws laytracks::Error for another name.
 MeshColouring colour_by(const std::string& measure, const Part& part, const QuadMesh& mesh);
 
-/// Writes an SVG picture of `mesh` of `part`, coloured as `colouring` says (see the overload
-/// below for the picture).
-void write_mesh_svg(std::ostream& out,
-                    const Part& part,
-                    const QuadMesh& mesh,
-                    const MeshColouring& colouring,
-                    MeshView view);
-
 /// Writes an SVG picture of `mesh` of `part`. Every element is one <polygon>, outlined in dark
-/// grey and filled with ramp_colour(its scaled Jacobian clamped to [0, 1]): dark blue for 0,
-/// yellow for 1; nothing else in the picture is a <polygon> (patch boundaries are bold black
-/// <polyline>s, the legend is <rect>s and <text>). Unfolded: the elements of each patch in its
-/// panel, in element order, panels laid out as write_rails_svg lays them. Oblique: patches
-/// drawn far to near by the depth of their frame origins, as write_rails_oblique_svg, each
-/// patch's elements in element order and then its boundary. Below the picture, a colour bar
-/// for the scaled Jacobian from 0 to 1, the 'bad' threshold (0.2, quality.md) and the smallest
-/// value marked, and the element and node counts.
-/// `scaled_jacobian[i]` is element i's value (non-finite values are drawn as 0). Deterministic.
-/// Throws laytracks::Error when `scaled_jacobian` is not one value per element, or an element
+/// grey and filled with ramp_colour of where its value lies between `colouring.worst` (0: dark
+/// blue) and `colouring.ideal` (1: yellow), clamped; nothing else in the picture is a
+/// <polygon> (patch boundaries are bold black <polyline>s, the legend is <rect>s and <text>).
+/// Unfolded: the elements of each patch in its panel, in element order, panels laid out as
+/// write_rails_svg lays them. Oblique: patches drawn far to near by the depth of their frame
+/// origins, as write_rails_oblique_svg, each patch's elements in element order and then its
+/// boundary. Below the picture, the colour bar with the 'bad' threshold (quality.md) and the
+/// element farthest from ideal marked, and the element and node counts. Deterministic.
+/// Throws laytracks::Error when `colouring` has not one value per element, or an element
 /// refers to a missing node or patch.
 void write_mesh_svg(std::ostream& out,
                     const Part& part,
                     const QuadMesh& mesh,
-                    const std::vector<double>& scaled_jacobian,
+                    const MeshColouring& colouring,
                     MeshView view);
 
 }  // namespace laytracks
