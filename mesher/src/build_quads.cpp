@@ -1665,17 +1665,40 @@ void smooth_mesh(const Part& part,
                      elements.end());
     }
   }
-  // A patch's sweeps move only its own nodes (pinned nodes stay), so patches run in parallel.
-  parallel_for(part.patches.size(), [&](std::size_t p) {
-    if (by_patch[p].empty()) return;
+  // A patch's sweeps move only its own nodes (pinned nodes stay), so patches run in parallel;
+  // a large patch's sweeps run in blocks (SweepSchedule), on all threads. The schedule
+  // depends on the patch alone, so the result is the same however the patches are spread.
+  const auto smooth_patch = [&](std::size_t p) {
     const Frame& frame = part.patches[p].frame;
     PatchQuads pq = patch_quads(part, mesh, p, by_patch[p], pinned);
+    const SweepSchedule schedule = sweep_schedule(pq.pos.size(), pq.fixed, pq.quads);
     const std::vector<Vec2> before = pq.pos;
-    final_sweeps(pq.pos, pq.fixed, pq.quads, iterations, kFinalUntangleTarget);
-    untaper_nodes(pq.pos, pq.fixed, pq.quads, iterations);
+    final_sweeps(pq.pos, pq.fixed, pq.quads, iterations, kFinalUntangleTarget, &schedule);
+    untaper_nodes(pq.pos, pq.fixed, pq.quads, iterations, &schedule);
     for (std::size_t i = 0; i < pq.global.size(); ++i)
       if (pq.pos[i] != before[i]) mesh.nodes[pq.global[i]] = frame.to_3d(pq.pos[i]);
+  };
+  // Largest first. A patch with more than a thread's share of the quads left would keep one
+  // thread busy after the others are done: such patches one after another, each on all
+  // threads; then the rest, each on one.
+  std::vector<std::size_t> order;
+  std::size_t left = 0;
+  for (std::size_t p = 0; p < part.patches.size(); ++p)
+    if (!by_patch[p].empty()) {
+      order.push_back(p);
+      left += by_patch[p].size();
+    }
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return by_patch[a].size() > by_patch[b].size();
   });
+  std::size_t first = 0;
+  for (; first < order.size(); ++first) {
+    const std::size_t quads = by_patch[order[first]].size();
+    if (quads < 2 * kSweepBlockNodes || quads * worker_threads() <= left) break;
+    smooth_patch(order[first]);
+    left -= quads;
+  }
+  parallel_for(order.size() - first, [&](std::size_t i) { smooth_patch(order[first + i]); });
 }
 
 }  // namespace laytracks

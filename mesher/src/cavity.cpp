@@ -479,11 +479,14 @@ std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations, do
     std::size_t kept = 0;
   };
   std::vector<Result> results(part.patches.size());
-  // With fewer patches than cores, each patch's attempts run in parallel instead.
-  const auto busy = static_cast<std::size_t>(std::count_if(
-      by_patch.begin(), by_patch.end(), [](const auto& e) { return !e.empty(); }));
-  const bool inner = busy < worker_threads();
-  parallel_for(part.patches.size(), [&](std::size_t p) {
+  // With one patch to re-fill, its attempts run in parallel instead (a parallel_for within
+  // the patches' would run on its caller's thread).
+  std::vector<std::size_t> busy;
+  for (std::size_t p = 0; p < by_patch.size(); ++p)
+    if (!by_patch[p].empty()) busy.push_back(p);
+  const bool inner = busy.size() == 1 && worker_threads() > 1;
+  parallel_for(busy.size(), [&](std::size_t i) {
+    const std::size_t p = busy[i];
     Result& r = results[p];
     r.pq = patch_quads(part, mesh, p, by_patch[p], pinned);
     if (r.pq.quads.empty()) return;

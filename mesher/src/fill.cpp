@@ -14,6 +14,7 @@
 #include "laytracks/mesher/build_quads.hpp"
 #include "laytracks/mesher/quality.hpp"
 #include "cdt.hpp"
+#include "patch_quads.hpp"
 
 namespace laytracks::mesher_detail {
 
@@ -2215,15 +2216,17 @@ void final_sweeps(std::vector<Vec2>& pos,
                   const std::vector<bool>& fixed,
                   const std::vector<std::array<std::uint32_t, 4>>& quads,
                   int iterations,
-                  double target) {
-  smooth_nodes(pos, fixed, quads, iterations);
+                  double target,
+                  const SweepSchedule* schedule) {
+  smooth_nodes(pos, fixed, quads, iterations, schedule);
   // Then the corners' angles, against the edge lengths the Laplacian sweeps left.
-  optimize_nodes(pos, fixed, quads, iterations);
+  optimize_nodes(pos, fixed, quads, iterations, schedule);
   // Then each node still in a quad below `target` moves to raise its worst quad (above
   // kFinalEscapeTarget strictly: no worst quad falls, no quad is stretched).
-  untangle_nodes(pos, fixed, quads, iterations, std::min(target, kFinalEscapeTarget), kFinalEdgeFraction);
+  untangle_nodes(pos, fixed, quads, iterations, std::min(target, kFinalEscapeTarget),
+                 kFinalEdgeFraction, false, schedule);
   if (target > kFinalEscapeTarget)
-    untangle_nodes(pos, fixed, quads, iterations, target, kFinalEdgeFraction, true);
+    untangle_nodes(pos, fixed, quads, iterations, target, kFinalEdgeFraction, true, schedule);
 }
 
 namespace {
@@ -2259,21 +2262,21 @@ class Settled {
       if (changed_[ring_[i]] >= t) return false;
     return true;
   }
-  /// After a visit of v: whether it moved v (any bit of its position).
-  void visited(std::uint32_t v, bool moved) {
-    ++clock_;
+  /// After a visit of v: whether it moved v (any bit of its position). `stamp` orders the
+  /// visits (from 1, rising along the sweeps' order): idle() compares only stamps, so the
+  /// visits of one phase of a SweepSchedule may record theirs at once (each its own node's).
+  void visited(std::uint32_t v, bool moved, std::uint64_t stamp) {
     if (moved) {
-      changed_[v] = clock_;
+      changed_[v] = stamp;
       settled_[v] = 0;
     } else {
-      settled_[v] = clock_;
+      settled_[v] = stamp;
     }
   }
 
  private:
   std::vector<std::uint32_t> start_, ring_;
   std::vector<std::uint64_t> changed_, settled_;
-  std::uint64_t clock_ = 0;
 };
 
 bool same_bits(Vec2 a, Vec2 b) { return std::memcmp(&a, &b, sizeof(Vec2)) == 0; }
@@ -2288,25 +2291,56 @@ std::vector<std::vector<std::uint32_t>> quads_at_nodes(std::size_t n,
   return around;
 }
 
-/// The sweeps of the node movers: up to `iterations` passes over the nodes in order, each
-/// visiting every node that is not fixed, is in a quad, and is not idle (Settled: none of its
-/// ring moved since its last visit left it where it was). `visit(v)` moves v or leaves it and
-/// returns true when the pass should count as progress; a pass without progress is the last.
+/// The sweeps of the node movers: up to `iterations` passes over the nodes, each visiting
+/// every node that is not fixed, is in a quad, and is not idle (Settled: none of its ring
+/// moved since its last visit left it where it was); in index order, or in the order of
+/// `schedule` when it has one, its groups of a phase at once (SweepSchedule). `visit(v)` moves
+/// v or leaves it and returns true when the pass should count as progress; a pass without
+/// progress is the last. `visit` may run on several threads at once, at nodes of different
+/// groups: what it writes besides pos[v] (scratch) must be its thread's own.
 template <class Visit>
 void sweep_nodes(std::vector<Vec2>& pos,
                  const std::vector<bool>& fixed,
                  const std::vector<std::vector<std::uint32_t>>& around,
                  const std::vector<std::array<std::uint32_t, 4>>& quads,
                  int iterations,
+                 const SweepSchedule* schedule,
                  Visit&& visit) {
-  Settled settled_nodes(pos.size(), around, quads);
+  const std::size_t n = pos.size();
+  Settled settled_nodes(n, around, quads);
+  // A visit's stamp: its pass, then the node's place in the pass's order.
+  const auto visit_node = [&](std::uint32_t v, std::uint64_t stamp) {
+    if (fixed[v] || around[v].empty() || settled_nodes.idle(v)) return false;
+    const Vec2 start = pos[v];
+    const bool progress = visit(v);
+    settled_nodes.visited(v, !same_bits(pos[v], start), stamp);
+    return progress;
+  };
+  if (schedule == nullptr || schedule->empty()) {
+    for (int it = 0; it < iterations; ++it) {
+      const std::uint64_t base = static_cast<std::uint64_t>(it) * (n + 1) + 1;
+      bool moved = false;
+      for (std::uint32_t v = 0; v < n; ++v)
+        if (visit_node(v, base + v)) moved = true;
+      if (!moved) break;
+    }
+    return;
+  }
+  std::vector<std::uint32_t> place(n, 0);
+  std::uint32_t next = 0;
+  for (const auto* groups : {&schedule->blocks, &schedule->seams})
+    for (const auto& group : *groups)
+      for (std::uint32_t v : group) place[v] = next++;
   for (int it = 0; it < iterations; ++it) {
+    const std::uint64_t base = static_cast<std::uint64_t>(it) * (n + 1) + 1;
     bool moved = false;
-    for (std::uint32_t v = 0; v < pos.size(); ++v) {
-      if (fixed[v] || around[v].empty() || settled_nodes.idle(v)) continue;
-      const Vec2 start = pos[v];
-      if (visit(v)) moved = true;
-      settled_nodes.visited(v, !same_bits(pos[v], start));
+    for (const auto* groups : {&schedule->blocks, &schedule->seams}) {
+      std::vector<char> progress(groups->size(), 0);
+      parallel_for(groups->size(), [&](std::size_t g) {
+        for (std::uint32_t v : (*groups)[g])
+          if (visit_node(v, base + place[v])) progress[g] = 1;
+      });
+      moved = moved || std::find(progress.begin(), progress.end(), 1) != progress.end();
     }
     if (!moved) break;
   }
@@ -2326,10 +2360,77 @@ unsigned midline_faults(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3) {
 
 }  // namespace
 
+SweepSchedule sweep_schedule(std::size_t n, const std::vector<bool>& fixed,
+                             const std::vector<std::array<std::uint32_t, 4>>& quads) {
+  const std::vector<std::vector<std::uint32_t>> around = quads_at_nodes(n, quads);
+  const auto movable = [&](std::uint32_t v) { return !fixed[v] && !around[v].empty(); };
+  std::size_t count = 0;
+  for (std::uint32_t v = 0; v < n; ++v)
+    if (movable(v)) ++count;
+  const std::size_t blocks = std::min(kSweepBlocks, count / kSweepBlockNodes);
+  if (blocks < 2) return {};
+  // Levels breadth-first, each component after the last (a level apart: they share no quad),
+  // from the node a search from its lowest-numbered node reaches last: levels across the
+  // component's longest way are narrow, and so are the seams.
+  constexpr std::uint32_t kUnset = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> level(n, kUnset), queue;
+  const auto search = [&](std::uint32_t from, std::uint32_t first) {
+    level[from] = first;
+    queue.assign(1, from);
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+      const std::uint32_t v = queue[head];
+      for (std::uint32_t q : around[v])
+        for (std::uint32_t u : quads[q])
+          if (level[u] == kUnset) {
+            level[u] = level[v] + 1;
+            queue.push_back(u);
+          }
+    }
+  };
+  std::uint32_t levels = 0;
+  for (std::uint32_t s = 0; s < n; ++s) {
+    if (level[s] != kUnset || around[s].empty()) continue;
+    search(s, 0);
+    const std::uint32_t far = queue.back();
+    for (std::uint32_t v : queue) level[v] = kUnset;
+    search(far, levels);
+    levels = level[queue.back()] + 2;
+  }
+  std::vector<std::size_t> per_level(levels, 0);
+  for (std::uint32_t v = 0; v < n; ++v)
+    if (movable(v)) ++per_level[level[v]];
+  // Cut before level c once the levels below hold the next block's share of the nodes, with
+  // kSweepBlockLevels levels since the last cut and before the end.
+  std::vector<std::uint32_t> cuts;
+  std::size_t below = 0;
+  for (std::uint32_t c = 1; c < levels && cuts.size() + 1 < blocks; ++c) {
+    below += per_level[c - 1];
+    const std::uint32_t last = cuts.empty() ? 0 : cuts.back();
+    if (below * blocks >= (cuts.size() + 1) * count && c - last >= kSweepBlockLevels &&
+        levels - c >= kSweepBlockLevels)
+      cuts.push_back(c);
+  }
+  if (cuts.empty()) return {};
+  SweepSchedule schedule;
+  schedule.blocks.resize(cuts.size() + 1);
+  schedule.seams.resize(cuts.size());
+  for (std::uint32_t v = 0; v < n; ++v) {
+    if (!movable(v)) continue;
+    // The first cut above v's level: v is in the block below it, or in its seam.
+    const auto above = static_cast<std::size_t>(
+        std::upper_bound(cuts.begin(), cuts.end(), level[v]) - cuts.begin());
+    if (above < cuts.size() && level[v] + 1 == cuts[above]) schedule.seams[above].push_back(v);
+    else if (above > 0 && level[v] == cuts[above - 1]) schedule.seams[above - 1].push_back(v);
+    else schedule.blocks[above].push_back(v);
+  }
+  return schedule;
+}
+
 void smooth_nodes(std::vector<Vec2>& pos,
                   const std::vector<bool>& fixed,
                   const std::vector<std::array<std::uint32_t, 4>>& quads,
-                  int iterations) {
+                  int iterations,
+                  const SweepSchedule* schedule) {
   const std::size_t n = pos.size();
   std::vector<std::vector<std::uint32_t>> nbr(n), around(n);
   for (std::uint32_t q = 0; q < quads.size(); ++q) {
@@ -2351,8 +2452,8 @@ void smooth_nodes(std::vector<Vec2>& pos,
   // Every quad's value at the present positions, updated as its nodes move.
   std::vector<double> value(quads.size());
   for (std::uint32_t q = 0; q < quads.size(); ++q) value[q] = jac(q);
-  std::vector<double> trial;
-  sweep_nodes(pos, fixed, around, quads, iterations, [&](std::uint32_t v) {
+  sweep_nodes(pos, fixed, around, quads, iterations, schedule, [&](std::uint32_t v) {
+    thread_local std::vector<double> trial;
     Vec2 avg{0.0, 0.0};
     for (std::uint32_t w : nbr[v]) avg = avg + pos[w];
     avg = (1.0 / static_cast<double>(nbr[v].size())) * avg;
@@ -2388,7 +2489,8 @@ void untangle_nodes(std::vector<Vec2>& pos,
                     int iterations,
                     double target,
                     double min_edge_fraction,
-                    bool strict) {
+                    bool strict,
+                    const SweepSchedule* schedule) {
   const std::size_t n = pos.size();
   const std::vector<std::vector<std::uint32_t>> around = quads_at_nodes(n, quads);
   // Scaled Jacobians do not see size: a node may not come closer to a neighbour than
@@ -2414,7 +2516,8 @@ void untangle_nodes(std::vector<Vec2>& pos,
   // edge is already that short takes any position that lengthens it, within `floor_j` below.
   // Settled (kJacobianGrain) for the comparisons; `raw` gets the unrounded worst.
   // The general form, for a node that is more than one corner of a quad (a degenerate quad).
-  double raw = 0.0;
+  // Scratch of a visit (visits may run on several threads at once: sweep_nodes).
+  thread_local double raw = 0.0;
   auto worst_at = [&](std::uint32_t v) {
     double w = std::numeric_limits<double>::infinity();
     for (std::uint32_t q : around[v]) {
@@ -2438,8 +2541,8 @@ void untangle_nodes(std::vector<Vec2>& pos,
     double ca2, cd2;    // |c - a|^2, |c - d|^2
     double jc;          // the scaled Jacobian of the corner at c
   };
-  std::vector<Opposite> ring;
-  std::vector<Vec2> edges;  // the edges at a node, for its step
+  thread_local std::vector<Opposite> ring;
+  thread_local std::vector<Vec2> edges;  // the edges at a node, for its step
   const auto corner = [](Vec2 e1, Vec2 e0, double l2) {
     return l2 > 0.0 ? cross(e1, e0) / std::sqrt(l2) : -1.0;
   };
@@ -2609,13 +2712,14 @@ void untangle_nodes(std::vector<Vec2>& pos,
     }
     return moved;
   };
-  sweep_nodes(pos, fixed, around, quads, iterations, search_node);
+  sweep_nodes(pos, fixed, around, quads, iterations, schedule, search_node);
 }
 
 void optimize_nodes(std::vector<Vec2>& pos,
                     const std::vector<bool>& fixed,
                     const std::vector<std::array<std::uint32_t, 4>>& quads,
-                    int iterations) {
+                    int iterations,
+                    const SweepSchedule* schedule) {
   const std::size_t n = pos.size();
   // The corners whose triangle moves with node v: in every quad round v, the corner at v and
   // its two neighbours.
@@ -2705,13 +2809,14 @@ void optimize_nodes(std::vector<Vec2>& pos,
     if (!kept) pos[v] = old;
     return kept;
   };
-  sweep_nodes(pos, fixed, around, quads, iterations, visit);
+  sweep_nodes(pos, fixed, around, quads, iterations, schedule, visit);
 }
 
 void untaper_nodes(std::vector<Vec2>& pos,
                    const std::vector<bool>& fixed,
                    const std::vector<std::array<std::uint32_t, 4>>& quads,
-                   int iterations) {
+                   int iterations,
+                   const SweepSchedule* schedule) {
   const std::size_t n = pos.size();
   const std::vector<std::vector<std::uint32_t>> around = quads_at_nodes(n, quads);
   // The quad across each edge of each quad (kNone on the boundary).
@@ -2728,8 +2833,9 @@ void untaper_nodes(std::vector<Vec2>& pos,
     const auto& x = quads[q];
     return 0.5 * cross(pos[x[2]] - pos[x[0]], pos[x[3]] - pos[x[1]]);
   };
-  // Per quad round the node being moved: its faults before the move.
-  std::vector<unsigned> faults;
+  // Per quad round the node being moved: its faults before the move (the visit's thread's own:
+  // sweep_nodes).
+  thread_local std::vector<unsigned> faults;
   // The sum of (1 - taper)^2 over the quads round v, their worst scaled Jacobian and the sum
   // of their scaled Jacobians, the largest area ratio between one of them and a quad across
   // an edge of it, and how many of them are tapered (quality.md: taper <= 0.8); with `faults`
@@ -2849,9 +2955,9 @@ void untaper_nodes(std::vector<Vec2>& pos,
     }
     return !same_bits(pos[v], old);
   };
-  sweep_nodes(pos, fixed, around, quads, iterations, visit);
+  sweep_nodes(pos, fixed, around, quads, iterations, schedule, visit);
   descend = true;
-  sweep_nodes(pos, fixed, around, quads, iterations, visit);
+  sweep_nodes(pos, fixed, around, quads, iterations, schedule, visit);
 }
 
 }  // namespace laytracks::mesher_detail

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <condition_variable>
 #include <cstdlib>
 #include <exception>
 #include <mutex>
@@ -134,8 +135,77 @@ std::size_t worker_threads() {
   return static_cast<std::size_t>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
+namespace {
+/// Set while a thread works for a parallel_for: one called from there runs on that thread.
+thread_local bool t_in_parallel_for = false;
+
+/// Threads kept waiting for parallel_for's work: a sweep pass of a large patch is a few
+/// parallel_for calls of a millisecond or less each (SweepSchedule), and starting threads for
+/// each cost as much as the work saved. One caller at a time (a batch's parts mesh at once,
+/// each on its own thread): run() says no to the others, which start threads of their own.
+class WorkerPool {
+ public:
+  ~WorkerPool() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    for (std::thread& t : threads_) t.join();
+  }
+
+  /// Runs `work` on `helpers` threads of the pool and on the calling thread; returns once all
+  /// have returned. False, having run nothing, when another caller is using the pool.
+  bool run(std::size_t helpers, const std::function<void()>& work) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (busy_) return false;
+    busy_ = true;
+    while (threads_.size() < helpers) threads_.emplace_back([this] { serve(); });
+    work_ = &work;
+    open_ = helpers;
+    running_ = helpers;
+    lock.unlock();
+    wake_.notify_all();
+    work();
+    lock.lock();
+    done_.wait(lock, [this] { return running_ == 0; });
+    work_ = nullptr;
+    busy_ = false;
+    return true;
+  }
+
+ private:
+  void serve() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      wake_.wait(lock, [this] { return stop_ || open_ > 0; });
+      if (stop_) return;
+      --open_;
+      const std::function<void()>* work = work_;
+      lock.unlock();
+      (*work)();
+      lock.lock();
+      if (--running_ == 0) done_.notify_one();
+    }
+  }
+
+  std::mutex mutex_;
+  std::condition_variable wake_, done_;
+  std::vector<std::thread> threads_;
+  const std::function<void()>* work_ = nullptr;
+  std::size_t open_ = 0;     // places of the present work not yet taken by a thread
+  std::size_t running_ = 0;  // places of the present work not yet finished
+  bool busy_ = false, stop_ = false;
+};
+
+WorkerPool& worker_pool() {
+  static WorkerPool pool;
+  return pool;
+}
+}  // namespace
+
 void parallel_for(std::size_t n, const std::function<void(std::size_t)>& fn) {
-  const std::size_t threads = std::min(n, worker_threads());
+  const std::size_t threads = t_in_parallel_for ? 1 : std::min(n, worker_threads());
   if (threads <= 1) {
     for (std::size_t i = 0; i < n; ++i) fn(i);
     return;
@@ -145,6 +215,8 @@ void parallel_for(std::size_t n, const std::function<void(std::size_t)>& fn) {
   std::size_t error_index = n;
   std::mutex error_mutex;
   auto work = [&] {
+    const bool outer = t_in_parallel_for;
+    t_in_parallel_for = true;
     for (std::size_t i = next++; i < n; i = next++) {
       try {
         fn(i);
@@ -156,11 +228,15 @@ void parallel_for(std::size_t n, const std::function<void(std::size_t)>& fn) {
         }
       }
     }
+    t_in_parallel_for = outer;
   };
-  std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
+  const std::function<void()> job = work;
+  if (!worker_pool().run(threads - 1, job)) {
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool) t.join();
+  }
   if (error) std::rethrow_exception(error);
 }
 
