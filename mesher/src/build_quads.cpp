@@ -1675,6 +1675,7 @@ void smooth_mesh(const Part& part,
     const std::vector<Vec2> before = pq.pos;
     final_sweeps(pq.pos, pq.fixed, pq.quads, iterations, kFinalUntangleTarget, &schedule);
     untaper_nodes(pq.pos, pq.fixed, pq.quads, iterations, &schedule);
+    keep_worst(pq.pos, before, pq.quads);
     for (std::size_t i = 0; i < pq.global.size(); ++i)
       if (pq.pos[i] != before[i]) mesh.nodes[pq.global[i]] = frame.to_3d(pq.pos[i]);
   };

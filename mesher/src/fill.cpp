@@ -2426,6 +2426,31 @@ SweepSchedule sweep_schedule(std::size_t n, const std::vector<bool>& fixed,
   return schedule;
 }
 
+std::size_t keep_worst(std::vector<Vec2>& pos, const std::vector<Vec2>& before,
+                       const std::vector<std::array<std::uint32_t, 4>>& quads) {
+  const auto jacobian = [&](const std::vector<Vec2>& at, const std::array<std::uint32_t, 4>& q) {
+    return settled(min_scaled_jacobian(at[q[0]], at[q[1]], at[q[2]], at[q[3]]));
+  };
+  double floor = kKeepWorstAbove;
+  for (const auto& q : quads) floor = std::min(floor, jacobian(before, q));
+  std::size_t put_back = 0;
+  // Each round puts back the nodes of every quad below the floor; a node put back stays, so
+  // at worst every node is where it was (every quad at or above the floor) and it ends.
+  for (bool again = true; again;) {
+    again = false;
+    for (const auto& q : quads) {
+      if (jacobian(pos, q) >= floor) continue;
+      for (std::uint32_t v : q)
+        if (!same_bits(pos[v], before[v])) {
+          pos[v] = before[v];
+          ++put_back;
+          again = true;
+        }
+    }
+  }
+  return put_back;
+}
+
 void smooth_nodes(std::vector<Vec2>& pos,
                   const std::vector<bool>& fixed,
                   const std::vector<std::array<std::uint32_t, 4>>& quads,
