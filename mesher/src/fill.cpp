@@ -2478,7 +2478,8 @@ void smooth_nodes(std::vector<Vec2>& pos,
   std::vector<double> value(quads.size());
   for (std::uint32_t q = 0; q < quads.size(); ++q) value[q] = jac(q);
   sweep_nodes(pos, fixed, around, quads, iterations, schedule, [&](std::uint32_t v) {
-    thread_local std::vector<double> trial;
+    thread_local std::vector<double> t_trial;  // its thread's own: sweep_nodes
+    std::vector<double>& trial = t_trial;
     Vec2 avg{0.0, 0.0};
     for (std::uint32_t w : nbr[v]) avg = avg + pos[w];
     avg = (1.0 / static_cast<double>(nbr[v].size())) * avg;
@@ -2541,9 +2542,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
   // edge is already that short takes any position that lengthens it, within `floor_j` below.
   // Settled (kJacobianGrain) for the comparisons; `raw` gets the unrounded worst.
   // The general form, for a node that is more than one corner of a quad (a degenerate quad).
-  // Scratch of a visit (visits may run on several threads at once: sweep_nodes).
-  thread_local double raw = 0.0;
-  auto worst_at = [&](std::uint32_t v) {
+  auto worst_at = [&](std::uint32_t v, double& raw) {
     double w = std::numeric_limits<double>::infinity();
     for (std::uint32_t q : around[v]) {
       const auto& x = quads[q];
@@ -2566,8 +2565,10 @@ void untangle_nodes(std::vector<Vec2>& pos,
     double ca2, cd2;    // |c - a|^2, |c - d|^2
     double jc;          // the scaled Jacobian of the corner at c
   };
-  thread_local std::vector<Opposite> ring;
-  thread_local std::vector<Vec2> edges;  // the edges at a node, for its step
+  // Scratch of a visit, its thread's own (visits may run on several threads at once:
+  // sweep_nodes); each visit binds them once (a thread_local is looked up at every use).
+  thread_local std::vector<Opposite> t_ring;
+  thread_local std::vector<Vec2> t_edges;  // the edges at a node, for its step
   const auto corner = [](Vec2 e1, Vec2 e0, double l2) {
     return l2 > 0.0 ? cross(e1, e0) / std::sqrt(l2) : -1.0;
   };
@@ -2575,7 +2576,8 @@ void untangle_nodes(std::vector<Vec2>& pos,
   // when an edge at v is below its floor. With `give_up` finite, it may stop as soon as the
   // worst so far is below it (then the value returned is only known to be below it).
   // `stopped` is set when it stopped so (or at a short edge): the candidate cannot be taken.
-  const auto worst_of = [&](Vec2 p, double fl2, double give_up, bool& short_edge, bool& stopped) {
+  const auto worst_of = [&](std::vector<Opposite>& ring, Vec2 p, double fl2, double give_up,
+                            bool& short_edge, bool& stopped) {
     double w = std::numeric_limits<double>::infinity();
     short_edge = false;
     stopped = false;
@@ -2627,6 +2629,9 @@ void untangle_nodes(std::vector<Vec2>& pos,
   };
   // One visit of node v: the compass search from where it is. True when it raised v's worst.
   const auto search_node = [&](std::uint32_t v) {
+    std::vector<Opposite>& ring = t_ring;
+    std::vector<Vec2>& edges = t_edges;
+    double raw = 0.0;
     bool moved = false;
     bool simple = true;
     ring.clear();
@@ -2656,11 +2661,11 @@ void untangle_nodes(std::vector<Vec2>& pos,
     double current = 0.0, before = 0.0;
     if (simple) {
       bool short_edge = false, stopped = false;
-      before = worst_of(pos[v], floor2[v], -std::numeric_limits<double>::infinity(), short_edge,
-                        stopped);
+      before = worst_of(ring, pos[v], floor2[v], -std::numeric_limits<double>::infinity(),
+                        short_edge, stopped);
       current = short_edge ? -std::numeric_limits<double>::infinity() : settled(before);
     } else {
-      current = worst_at(v);
+      current = worst_at(v, raw);
       before = std::numeric_limits<double>::infinity();
       for (std::uint32_t q : around[v]) {
         const auto& x = quads[q];
@@ -2715,11 +2720,11 @@ void untangle_nodes(std::vector<Vec2>& pos,
           if (simple) {
             bool short_edge = false, stopped = false;
             const double give_up = std::max(best + 1e-12, floor_j) - kGiveUpMargin;
-            raw = worst_of(p, floor2[v], give_up, short_edge, stopped);
+            raw = worst_of(ring, p, floor2[v], give_up, short_edge, stopped);
             w = short_edge || stopped ? -std::numeric_limits<double>::infinity() : settled(raw);
           } else {
             pos[v] = p;
-            w = worst_at(v);
+            w = worst_at(v, raw);
           }
           if (w > best + 1e-12 && w >= floor_j && keeps_sign(before, raw) &&
               (!strict || !stretches(v, here, p))) {
@@ -2858,15 +2863,15 @@ void untaper_nodes(std::vector<Vec2>& pos,
     const auto& x = quads[q];
     return 0.5 * cross(pos[x[2]] - pos[x[0]], pos[x[3]] - pos[x[1]]);
   };
-  // Per quad round the node being moved: its faults before the move (the visit's thread's own:
-  // sweep_nodes).
-  thread_local std::vector<unsigned> faults;
+  // Per quad round the node being moved: its faults before the move (scratch, its thread's
+  // own: sweep_nodes; a visit binds it once).
+  thread_local std::vector<unsigned> t_faults;
   // The sum of (1 - taper)^2 over the quads round v, their worst scaled Jacobian and the sum
   // of their scaled Jacobians, the largest area ratio between one of them and a quad across
   // an edge of it, and how many of them are tapered (quality.md: taper <= 0.8); with `faults`
   // filled, infinity when a quad has a fault it did not have.
-  const auto measure = [&](std::uint32_t v, double& worst, double& jacobians, double& ratio,
-                           int& tapered) {
+  const auto measure = [&](std::vector<unsigned>& faults, std::uint32_t v, double& worst,
+                           double& jacobians, double& ratio, int& tapered) {
     double sum = 0.0;
     worst = std::numeric_limits<double>::infinity();
     jacobians = 0.0;
@@ -2924,18 +2929,19 @@ void untaper_nodes(std::vector<Vec2>& pos,
     });
     if (simple) {
       goal = (1.0 / static_cast<double>(around[v].size())) * goal;
+      std::vector<unsigned>& faults = t_faults;
       faults.clear();
       double worst_before = 0.0, jacobians_before = 0.0, ratio_before = 1.0;
       int tapered_before = 0;
       const double before =
-          measure(v, worst_before, jacobians_before, ratio_before, tapered_before);
+          measure(faults, v, worst_before, jacobians_before, ratio_before, tapered_before);
       const double ratio_cap = std::max(ratio_before, kUntaperAreaRatio);
       // Moves v to p when that passes every test; else leaves it where it was.
       const auto try_move = [&](Vec2 p) {
         pos[v] = p;
         double worst = 0.0, jacobians = 0.0, ratio = 1.0;
         int tapered = 0;
-        const double after = measure(v, worst, jacobians, ratio, tapered);
+        const double after = measure(faults, v, worst, jacobians, ratio, tapered);
         if (after < before - kUntaperGain && (!descend || tapered <= tapered_before) &&
             settled(worst) >= settled(worst_before) && keeps_sign(worst_before, worst) &&
             ratio <= ratio_cap && jacobians >= jacobians_before - kUntaperJacobianSlack)
