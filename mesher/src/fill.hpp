@@ -246,7 +246,8 @@ constexpr double kFinalEdgeFraction = 0.3;
 /// The sweeps of the final smoothing (docs/mesher.md, "Smoothing"): `iterations` Laplacian
 /// sweeps, then as many of angle optimisation and of untangling towards `target`
 /// (kFinalUntangleTarget, or kFinalEscapeTarget for a cavity). No quad is ever inverted;
-/// `fixed` nodes stay.
+/// `fixed` nodes stay. Every sweep of these (and of the four movers' own) visits the nodes in
+/// index order, or in the order of `schedule` when one is given (SweepSchedule).
 void final_sweeps(std::vector<Vec2>& pos,
                   const std::vector<bool>& fixed,
                   const std::vector<std::array<std::uint32_t, 4>>& quads,
