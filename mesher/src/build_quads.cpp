@@ -1682,13 +1682,9 @@ void smooth_mesh(const Part& part,
   // Largest first. A patch with more than a thread's share of the quads left would keep one
   // thread busy after the others are done: such patches one after another, each on all
   // threads; then the rest, each on one.
-  std::vector<std::size_t> order;
+  std::vector<std::size_t> order = busy_patches(by_patch);
   std::size_t left = 0;
-  for (std::size_t p = 0; p < part.patches.size(); ++p)
-    if (!by_patch[p].empty()) {
-      order.push_back(p);
-      left += by_patch[p].size();
-    }
+  for (std::size_t p : order) left += by_patch[p].size();
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return by_patch[a].size() > by_patch[b].size();
   });

@@ -481,9 +481,7 @@ std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations, do
   std::vector<Result> results(part.patches.size());
   // With one patch to re-fill, its attempts run in parallel instead (a parallel_for within
   // the patches' would run on its caller's thread).
-  std::vector<std::size_t> busy;
-  for (std::size_t p = 0; p < by_patch.size(); ++p)
-    if (!by_patch[p].empty()) busy.push_back(p);
+  const std::vector<std::size_t> busy = busy_patches(by_patch);
   const bool inner = busy.size() == 1 && worker_threads() > 1;
   parallel_for(busy.size(), [&](std::size_t i) {
     const std::size_t p = busy[i];

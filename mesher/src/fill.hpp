@@ -126,8 +126,9 @@ std::optional<FaceMesh> fill_cavity(const FaceInput& face);
 constexpr double kAcceptJacobian = 0.3;
 
 /// The order in which the node sweeps of a large patch visit its nodes, in groups that may run
-/// at once (docs/mesher.md, "Sweeps in blocks"). The nodes are levelled breadth-first from the
-/// lowest-numbered one (two nodes are neighbours when they share a quad), and the levels cut
+/// at once (docs/mesher.md, "Sweeps in blocks"). The nodes are levelled breadth-first (two nodes
+/// are neighbours when they share a quad), per component from the node that a search from its
+/// lowest-numbered node reaches last (narrow levels, across its longest way), and the levels cut
 /// into blocks of about kSweepBlockNodes movable nodes, at least kSweepBlockLevels levels
 /// thick. A pass visits first the interior of every block, then the two levels at each cut (a
 /// seam). A visit at a node reads the nodes at most two levels from it (its quads and the

@@ -87,6 +87,13 @@ std::vector<std::vector<std::uint32_t>> elements_by_patch(const Part& part, cons
   return by;
 }
 
+std::vector<std::size_t> busy_patches(const std::vector<std::vector<std::uint32_t>>& by_patch) {
+  std::vector<std::size_t> busy;
+  for (std::size_t p = 0; p < by_patch.size(); ++p)
+    if (!by_patch[p].empty()) busy.push_back(p);
+  return busy;
+}
+
 PatchQuads patch_quads(const Part& part,
                        const QuadMesh& mesh,
                        std::size_t p,

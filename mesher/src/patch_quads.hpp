@@ -43,6 +43,10 @@ struct PatchQuads {
 /// per patch).
 std::vector<std::vector<std::uint32_t>> elements_by_patch(const Part& part, const QuadMesh& mesh);
 
+/// The patches that have elements in `by_patch` (elements_by_patch, or a subset of it), in
+/// patch order: the work of the passes that run patch by patch.
+std::vector<std::size_t> busy_patches(const std::vector<std::vector<std::uint32_t>>& by_patch);
+
 /// Patch p's quads, given its `elements` (elements_by_patch) and `pinned` (pinned_nodes).
 /// Nodes are numbered in order of first use.
 PatchQuads patch_quads(const Part& part,

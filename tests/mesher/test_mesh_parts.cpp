@@ -453,7 +453,7 @@ TEST_CASE("the smoothing leaves no quad below the worst before it, up to 0.6", "
   // Laplacian sweeps take a corner of 0.57 down to 0.2 (each move keeps the quads round the
   // node above min(their worst, kSmoothFloor)), and the later sweeps brought it back to 0.38
   // only. keep_worst puts back the nodes of every quad below min(the worst before, 0.6):
-  // 0.575. And on the 20 parts the same bound holds (it did not fail there before).
+  // 0.575. And on five of the 20 parts the same bound holds (it did not fail there before).
   MeshPartOptions o;
   o.size = 0.09599999999999999;
   o.adaptive = false;  // the part asks for adaptive mode
