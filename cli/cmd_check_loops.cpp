@@ -49,7 +49,7 @@ int run_check_loops(const std::vector<std::string>& argv) {
   const auto t0 = std::chrono::steady_clock::now();
   const MeshingOptions meshing = meshing_options(args);
   const Part part = read_part(args.positional()[0], meshing.build);
-  const std::vector<MedialAxis> axes = compute_medial_axes(part);
+  std::vector<MedialAxis> axes = compute_medial_axes(part);
   std::unique_ptr<TrackWidthLaw> law;
   const CutGraphOptions options = cut_graph_options(part, axes, meshing.mesh, law);
   const CutGraph graph = build_cut_graph(part, axes, options);

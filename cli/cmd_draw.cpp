@@ -81,14 +81,17 @@ int run_draw(const std::vector<std::string>& argv) {
     });
     return kOk;
   }
-  const std::vector<MedialAxis> axes = compute_medial_axes(part);
+  std::vector<MedialAxis> axes = compute_medial_axes(part);
   if (stage == "medial") {
     write_file_atomically(*out, [&](std::ostream& o) { write_medial_svg(o, part, axes); });
     return kOk;
   }
   std::unique_ptr<TrackWidthLaw> law;
   CutGraphOptions cg;
-  if (stage == "tracks") cg = cut_graph_options(part, axes, options.mesh, law);
+  // The corridors as the tracks and the mesh at this size see them (the round holes chosen),
+  // with only the source rails laid.
+  cg = cut_graph_options(part, axes, options.mesh, law);
+  if (stage == "corridors") cg = CutGraphOptions{};
   const CutGraph graph = build_cut_graph(part, axes, cg);
   write_file_atomically(*out, [&](std::ostream& o) {
     if (view == "oblique") {

@@ -65,6 +65,36 @@ std::vector<bool> smooth_flags(const BuildState& s, const Chain& c) {
   return smooth;
 }
 
+/// Patch p's Polygon2::circles and circle, from its chains (already oriented). Arcs whose centres
+/// and radii agree within Tolerances::kOnEdge x the part size (a hole given as four quarter
+/// arcs) share a circle, so the medial mapping runs on across their joints.
+void fill_circles(BuildState& s, std::size_t p) {
+  Patch& patch = s.part.patches[p];
+  Polygon2& poly = patch.polygon;
+  poly.circles.clear();
+  poly.circle.assign(s.chains[p].size(), {});
+  const double tol = Tolerances::kOnEdge * s.part.size;
+  std::vector<Vec3> centres;  // of poly.circles, in 3D
+  for (std::size_t l = 0; l < s.chains[p].size(); ++l) {
+    for (const std::int64_t a : s.chains[p][l].seg_arc) {
+      if (a < 0) {
+        poly.circle[l].push_back(-1);
+        continue;
+      }
+      const ArcInfo& arc = s.arcs[static_cast<std::size_t>(a)];
+      std::size_t k = 0;
+      while (k < centres.size() && !(distance(centres[k], arc.center) <= tol &&
+                                     std::abs(poly.circles[k].radius - arc.radius) <= tol))
+        ++k;
+      if (k == centres.size()) {
+        centres.push_back(arc.center);
+        poly.circles.push_back({patch.frame.to_2d(arc.center), arc.radius});
+      }
+      poly.circle[l].push_back(static_cast<std::int32_t>(k));
+    }
+  }
+}
+
 /// Orients patch p's loops (outer CCW, holes CW) and fills its loops, polygon and area.
 void shape_patch(BuildState& s, std::size_t p) {
   Patch& patch = s.part.patches[p];
@@ -88,6 +118,7 @@ void shape_patch(BuildState& s, std::size_t p) {
   patch.polygon.loops = loops;
   patch.polygon.smooth.clear();
   for (const Loop& loop : patch.loops) patch.polygon.smooth.push_back(loop.smooth);
+  fill_circles(s, p);
 }
 
 }  // namespace

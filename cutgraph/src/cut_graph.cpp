@@ -145,6 +145,7 @@ CutGraph build_cut_graph(const Part& part,
                          const std::vector<MedialAxis>& axes,
                          const CutGraphOptions& options) {
   CutGraph graph;
+  for (const MedialAxis& axis : axes) graph.round_holes.push_back(axis.round_circles());
   std::vector<Vec3> suppressed;
   const TrackWidthLaw* law = options.adaptive;
   const bool tracks = options.track_width > 0.0 || law;

@@ -392,10 +392,190 @@ const MedialAxis::SpreadZone* MedialAxis::zone_of(const BoundaryPoint& p) const 
   return nullptr;
 }
 
+int MedialAxis::concave_circle(const BoundarySite& s) const {
+  if (round_.empty()) return -1;
+  const std::vector<std::int32_t>& circle = polygon_.circle[s.loop];
+  const auto n = static_cast<std::uint32_t>(circle.size());
+  const auto concave = [&](std::uint32_t j) {
+    const std::int32_t k = circle[j];
+    if (k < 0) return false;
+    const Vec2 a = seg_start(polygon_, s.loop, j);
+    return cross(seg_end(polygon_, s.loop, j) - a,
+                 polygon_.circles[static_cast<std::size_t>(k)].centre - a) < 0.0;
+  };
+  std::int32_t k = -1;
+  if (s.kind == BoundarySite::Kind::Segment) {
+    if (concave(s.index)) k = circle[s.index];
+  } else {
+    // A corner between two chords of the circle, or where the circle meets a tangent line
+    // (the end of a slot's round end): its cell's points map along rays too, onto the chords.
+    const std::uint32_t before = (s.index + n - 1) % n;
+    const bool in = concave(before), out = concave(s.index);
+    if (in && out && circle[before] == circle[s.index]) {
+      k = circle[s.index];
+    } else if (in != out && polygon_.smooth[s.loop][s.index]) {
+      k = in ? circle[before] : circle[s.index];
+    }
+  }
+  return k >= 0 && round_[static_cast<std::size_t>(k)] ? k : -1;
+}
+
+std::vector<Circle2> MedialAxis::round_circles() const {
+  std::vector<Circle2> out;
+  for (std::size_t k = 0; k < round_.size(); ++k)
+    if (round_[k]) out.push_back(polygon_.circles[k]);
+  return out;
+}
+
+std::size_t MedialAxis::choose_round_holes(double element_size) {
+  const std::size_t nc = polygon_.circles.size();
+  round_.assign(nc, 1);  // so that concave_circle names every concave circle's sites
+  std::vector<double> delta(nc, 0.0), beside(nc, 0.0);
+  std::vector<char> concave(nc, 0);
+  for (std::uint32_t l = 0; l < polygon_.circle.size(); ++l) {
+    for (std::uint32_t j = 0; j < polygon_.circle[l].size(); ++j) {
+      for (const BoundarySite site : {BoundarySite{BoundarySite::Kind::Segment, l, j},
+                                      BoundarySite{BoundarySite::Kind::Corner, l, j}}) {
+        const int k = concave_circle(site);
+        if (k < 0) continue;
+        const auto kk = static_cast<std::size_t>(k);
+        concave[kk] = 1;
+        if (site.kind == BoundarySite::Kind::Segment) {
+          const Vec2 c = polygon_.circles[kk].centre;
+          const Vec2 a = seg_start(polygon_, l, j) - c, b = seg_end(polygon_, l, j) - c;
+          delta[kk] = std::max(delta[kk], std::abs(std::atan2(cross(a, b), dot(a, b))));
+        }
+        for (MaEdgeId id : cells_[cell_index(site)]) {
+          const MaEdge& e = edges_[id.index()];
+          beside[kk] = std::max({beside[kk], vertices_[e.a.index()].radius,
+                                 vertices_[e.b.index()].radius});
+        }
+      }
+    }
+  }
+  std::size_t chosen = 0;
+  for (std::size_t k = 0; k < nc; ++k) {
+    const double fan = (polygon_.circles[k].radius + beside[k]) * delta[k] / element_size;
+    round_[k] = concave[k] && fan > kRoundHoleFanRails ? 1 : 0;
+    chosen += round_[k];
+  }
+  return chosen;
+}
+
+namespace {
+
+/// Calls visit(j) for the segments of loop l that are chords of circle k, contiguous with
+/// segment `hint` (itself first, then onwards, then backwards), until visit returns true.
+template <class Visit>
+void walk_run(const Polygon2& poly, std::uint32_t l, std::uint32_t hint, std::int32_t k,
+              const Visit& visit) {
+  const std::vector<std::int32_t>& circle = poly.circle[l];
+  const auto n = static_cast<std::uint32_t>(circle.size());
+  std::uint32_t j = hint;
+  std::uint32_t seen = 0;
+  for (; seen < n && circle[j] == k; ++seen, j = (j + 1) % n)
+    if (visit(j)) return;
+  for (j = (hint + n - 1) % n; seen < n && circle[j] == k; ++seen, j = (j + n - 1) % n)
+    if (visit(j)) return;
+}
+
+}  // namespace
+
+std::optional<BoundaryPoint> MedialAxis::radial_foot(std::uint32_t loop, std::uint32_t hint, int k,
+                                                     Vec2 x) const {
+  const Vec2 c = polygon_.circles[static_cast<std::size_t>(k)].centre;
+  const Vec2 d = x - c;
+  std::optional<BoundaryPoint> out;
+  walk_run(polygon_, loop, hint, k, [&](std::uint32_t j) {
+    const Vec2 a = seg_start(polygon_, loop, j), b = seg_end(polygon_, loop, j);
+    const double ca = cross(a - c, d), cb = cross(b - c, d);
+    if ((ca > 0.0 && cb > 0.0) || (ca < 0.0 && cb < 0.0) || ca == cb) return false;
+    if (!(dot((a - c) + (b - c), d) > 0.0)) return false;  // the ray's other half
+    const double s = std::clamp(ca / (ca - cb), 0.0, 1.0);
+    out = BoundaryPoint{{BoundarySite::Kind::Segment, loop, j}, s, lerp(a, b, s)};
+    return true;
+  });
+  if (out) return out;
+  // The ray passes an end of the run (a point of the axis beside the arc's end): that end, so
+  // that the feet keep their order along the boundary as the point moves.
+  std::uint32_t lo = hint, hi = hint;
+  walk_run(polygon_, loop, hint, k, [&](std::uint32_t j) {
+    const auto n = static_cast<std::uint32_t>(polygon_.loops[loop].size());
+    if (j == (hi + 1) % n) hi = j;
+    if (j == (lo + n - 1) % n) lo = j;
+    return false;
+  });
+  const Vec2 start = seg_start(polygon_, loop, lo), end = seg_end(polygon_, loop, hi);
+  const auto along = [&](Vec2 q) { return dot(q - c, d) / norm(q - c); };
+  if (along(end) >= along(start)) return BoundaryPoint{{BoundarySite::Kind::Segment, loop, hi}, 1.0, end};
+  return BoundaryPoint{{BoundarySite::Kind::Segment, loop, lo}, 0.0, start};
+}
+
+std::optional<MaPoint> MedialAxis::radial_project(const BoundarySite& site, int k, Vec2 x) const {
+  const Vec2 c = polygon_.circles[static_cast<std::size_t>(k)].centre;
+  const Vec2 d = x - c;
+  const double from = norm(d);
+  if (!(from > 0.0)) return std::nullopt;
+  const double tol = kLocateRel * size_;
+  const auto side = [&](Vec2 q) { return cross(d, q - c); };
+  std::optional<MaPoint> best;
+  double best_at = INFINITY;
+  const auto try_edge = [&](MaEdgeId id) {
+    const MaEdge& e = edges_[id.index()];
+    const double f0 = side(vertices_[e.a.index()].position);
+    const double f1 = side(vertices_[e.b.index()].position);
+    if ((f0 > 0.0 && f1 > 0.0) || (f0 < 0.0 && f1 < 0.0)) return;
+    double t = 0.0;
+    if (f0 == 0.0 || f1 == 0.0) {
+      t = f0 == 0.0 ? 0.0 : 1.0;  // an end on the ray's line (both: the start)
+    } else if (e.kind == MaEdgeKind::Line) {
+      t = f0 / (f0 - f1);
+    } else {
+      double lo = 0.0, hi = 1.0;  // f changes sign on [lo, hi]
+      for (int it = 0; it < 60 && hi - lo > 1e-15; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        const double fm = side(point_on_edge(id, mid).position);
+        if ((fm > 0.0) == (f0 > 0.0) && fm != 0.0) {
+          lo = mid;
+        } else {
+          hi = mid;
+        }
+      }
+      t = 0.5 * (lo + hi);
+    }
+    const MaPoint m = point_on_edge(id, std::clamp(t, 0.0, 1.0));
+    const Vec2 r = m.position - c;
+    const double at = dot(r, d) / from;
+    if (at < from - tol || at >= best_at) return;
+    best = m;
+    best_at = at;
+  };
+  const std::uint32_t l = site.loop;
+  walk_run(polygon_, l, site.index, k, [&](std::uint32_t j) {
+    for (MaEdgeId id : cells_[cell_index({BoundarySite::Kind::Segment, l, j})]) try_edge(id);
+    // The corners at the chord's ends, when they are the circle's (concave_circle); a corner
+    // between two chords is met twice, and its edges tried twice, to no effect.
+    const auto n = static_cast<std::uint32_t>(polygon_.loops[l].size());
+    for (const std::uint32_t v : {j, (j + 1) % n}) {
+      const BoundarySite corner{BoundarySite::Kind::Corner, l, v};
+      if (concave_circle(corner) == k)
+        for (MaEdgeId id : cells_[cell_index(corner)]) try_edge(id);
+    }
+    return false;
+  });
+  return best;
+}
+
 Side MedialAxis::far_side(const MaPoint& m, const BoundaryPoint& p) const {
   const MaEdge& e = edges_[m.edge.index()];
   if (e.left == p.site) return Side::Right;
   if (e.right == p.site) return Side::Left;
+  // A point of a round hole maps along the ray from its centre (project): its MA point's
+  // near site is another chord or corner of that circle.
+  if (const int k = concave_circle(p.site); k >= 0) {
+    if (concave_circle(e.left) == k) return Side::Right;
+    if (concave_circle(e.right) == k) return Side::Left;
+  }
   if (const SpreadZone* z = zone_of(p)) {
     const BoundarySite* near = &z->steps.back().near;
     for (const auto& step : z->steps)
@@ -536,6 +716,11 @@ std::optional<MaPoint> MedialAxis::project(const BoundaryPoint& bp) const {
   const Vec2 s0 = seg_start(polygon_, bp.site.loop, bp.site.index);
   const Vec2 s1 = seg_end(polygon_, bp.site.loop, bp.site.index);
   const Vec2 p = lerp(s0, s1, bp.s);
+  // On a round hole (or a concave fillet) along the ray from the circle's centre, as on the
+  // circle itself: the rails across it spread over the hole instead of meeting at a chord's
+  // end (docs/medial.md, "Round holes").
+  if (const int k = concave_circle(bp.site); k >= 0)
+    if (auto m = radial_project(bp.site, k, p)) return m;
   const Vec2 n = inward_normal(polygon_, bp.site);
   std::optional<MaPoint> best;
   for (MaEdgeId id : cells_[cell_index(bp.site)]) {
@@ -630,6 +815,8 @@ BoundaryPoint MedialAxis::touching_point(const MaPoint& p, Side side) const {
     bp.position = lerp(a, b, bp.s);
     return bp;
   }
+  if (const int k = concave_circle(bp.site); k >= 0)
+    if (auto r = radial_foot(bp.site.loop, bp.site.index, k, p.position)) return *r;
   bp.position = site_foot(polygon_, bp.site, p.position, &bp.s);
   return bp;
 }
@@ -645,6 +832,8 @@ std::vector<BoundaryPoint> MedialAxis::touching_points(MaVertexId id) const {
     if (std::fabs(distance(bp.position, v.position) - v.radius) > std::max(tol, 1e-7 * v.radius)) {
       continue;  // not on the disk (cannot happen for a valid axis)
     }
+    if (const int k = concave_circle(site); k >= 0)
+      if (auto r = radial_foot(site.loop, site.index, k, v.position)) bp = *r;
     bool duplicate = false;
     for (const auto& o : out) duplicate = duplicate || distance(o.position, bp.position) <= tol;
     if (!duplicate) out.push_back(bp);

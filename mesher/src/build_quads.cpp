@@ -105,6 +105,10 @@ constexpr double kThinWedgeAngle = 10.0 * kPi / 180.0;
 constexpr std::size_t kRoundFanRails = 6;
 constexpr std::size_t kRoundFanOpenGaps = 2;
 constexpr double kRoundFanAngle = 40.0 * kPi / 180.0;
+/// drop_crowded_feet: neighbouring rail feet on a concave arc closer than this x the element
+/// size are not both kept; gaps equal within kFootTie x the part's size are alike.
+constexpr double kMinArcFoot = 0.65;
+constexpr double kFootTie = 1e-9;
 /// Two MA points of a patch closer than this x h (in adaptive mode h is MIN_END_WIDTH, the
 /// finest track) are one node.
 constexpr double kMergeMaPoints = 1e-3;
@@ -540,6 +544,7 @@ class QuadBuilder {
     const std::size_t merged = merge_fan_clusters(g, ma_nodes, ma_radius);
     if (!keep) result_.stats.fan_clusters += merged;  // the second pass merges them again
     if (keep) return;
+    drop_crowded_feet(pid, g);
     drop_narrow_fans(g, false);
     drop_narrow_fans(g, true);
     drop_dangling_rails(g);
@@ -890,6 +895,134 @@ class QuadBuilder {
         if (fans) --feet[g.edges[rails[gone]].a];
         ++result_.stats.narrow_fans;
         rails.erase(rails.begin() + static_cast<std::ptrdiff_t>(gone));
+      }
+    }
+    std::size_t k = 0;
+    g.edges.erase(std::remove_if(g.edges.begin(), g.edges.end(),
+                                 [&](const CEdge&) { return drop[k++]; }),
+                  g.edges.end());
+  }
+
+  /// Round holes (docs/medial.md, "Round holes"): rails land on a concave arc (a hole's, or a
+  /// concave fillet's) along rays from its centre, so the rails of a wider boundary across the
+  /// axis crowd onto a small hole, their feet R / (R + r) of their spacing apart (R the hole's
+  /// radius, r the axis' radius there). Along each run of boundary on one such circle (the
+  /// arcs of one circle in a row, round their joints; a whole hole is a closed run), of two
+  /// neighbouring feet closer than kMinArcFoot x the element size one goes with its rails
+  /// (its chain's rest then dangles, and goes too), the closest pair first, until none is that
+  /// close. Of the pair, the foot whose other gap is the smaller goes, so that the gaps even
+  /// out; the run's own ends stay. Gaps alike to kFootTie x the part's size are a tie, which
+  /// the foot with the greater mesh node id loses: every pose drops the same rails.
+  void drop_crowded_feet(PatchId pid, PatchGraph& g) {
+    const Frame& frame = part_.patches[pid.index()].frame;
+    const double tol = kSamePointRel * part_.size;
+    std::vector<std::vector<std::uint32_t>> rails_at(g.nodes.size());
+    for (std::uint32_t i = 0; i < g.edges.size(); ++i)
+      if (g.edges[i].rail) rails_at[g.edges[i].a].push_back(i);
+    // The boundary edges come first, loop by loop, each loop's in order from its first node.
+    std::vector<std::vector<std::uint32_t>> loops;
+    for (std::uint32_t i = 0; i < g.edges.size() && !g.edges[i].rail; ++i) {
+      if (loops.empty() || g.edges[loops.back().back()].b != g.edges[i].a) loops.emplace_back();
+      loops.back().push_back(i);
+    }
+    // Per boundary edge: the index of its concave circle in `circles`, or -1.
+    std::vector<std::pair<Vec2, double>> circles;
+    const auto circle_of = [&](const CEdge& e) -> int {
+      const Unit& un = units_[e.edge];
+      if (un.arc < 0) return -1;
+      const PartArc& arc = part_.arcs[static_cast<std::size_t>(un.arc)];
+      const Vec2 c = frame.to_2d(arc.center), pa = g.nodes[e.a].p, pb = g.nodes[e.b].p;
+      if (!(cross(pb - pa, c - pa) < 0.0)) return -1;  // convex: the patch is inside
+      const std::vector<Circle2>& round = graph_.round_holes[pid.index()];
+      if (std::none_of(round.begin(), round.end(), [&](const Circle2& r) {
+            return distance(r.centre, c) <= tol && std::abs(r.radius - arc.radius) <= tol;
+          }))
+        return -1;  // mapped as the polygon is: its rails meet at the chords' ends
+      for (std::size_t k = 0; k < circles.size(); ++k)
+        if (distance(circles[k].first, c) <= tol && std::abs(circles[k].second - arc.radius) <= tol)
+          return static_cast<int>(k);
+      circles.emplace_back(c, arc.radius);
+      return static_cast<int>(circles.size() - 1);
+    };
+    std::vector<bool> drop(g.edges.size(), false);
+    struct Foot {
+      double at;           // length along the run from its start
+      double size;         // the element size there
+      std::uint32_t node;  // coarse node
+      bool fixed;          // an end of an open run
+    };
+    for (const std::vector<std::uint32_t>& loop : loops) {
+      const std::size_t n = loop.size();
+      std::vector<int> circle(n);
+      for (std::size_t i = 0; i < n; ++i) circle[i] = circle_of(g.edges[loop[i]]);
+      // Runs: maximal stretches of one circle. Start after a change, if the loop has one.
+      std::size_t start = 0;
+      while (start < n && circle[start] == circle[(start + n - 1) % n]) ++start;
+      const bool closed = start == n;  // the whole loop is one circle (or none)
+      if (closed) start = 0;
+      for (std::size_t step = 0; step < n;) {
+        const std::size_t first = (start + step) % n;
+        std::size_t len = 1;
+        while (step + len < n && circle[(first + len) % n] == circle[first]) ++len;
+        step += len;
+        if (circle[first] < 0) continue;
+        std::vector<Foot> feet;
+        double at = 0.0;
+        for (std::size_t k = 0; k <= len; ++k) {
+          if (k == len && closed) break;
+          const CEdge& e = g.edges[loop[(first + std::min(k, len - 1)) % n]];
+          const std::uint32_t node = k < len ? e.a : e.b;
+          const EdgeNodes& en = edges_[e.edge];
+          const double t = en.t[e.piece + ((k < len) != e.forward ? 1 : 0)];
+          if (!rails_at[node].empty())
+            feet.push_back({at, local_size(e.edge, t), node, !closed && (k == 0 || k == len)});
+          if (k < len) at += (en.t[e.piece + 1] - en.t[e.piece]) * unit_length(e.edge);
+        }
+        const double total = at;
+        const std::size_t m0 = feet.size();
+        if (m0 < 2) continue;
+        // gap(k): from feet[k] to the next (round a closed run), or infinite.
+        const auto gap = [&](std::size_t k) {
+          if (k + 1 < feet.size()) return feet[k + 1].at - feet[k].at;
+          return closed && feet.size() > 1 ? feet.front().at + total - feet[k].at : INFINITY;
+        };
+        for (;;) {
+          const std::size_t m = feet.size();
+          std::size_t pick = m;
+          double closest = INFINITY;
+          for (std::size_t k = 0; k < m && m >= 2; ++k) {
+            const std::size_t k1 = (k + 1) % m;
+            if (feet[k].fixed && feet[k1].fixed) continue;
+            const double d = gap(k);
+            if (!(d < kMinArcFoot * std::min(feet[k].size, feet[k1].size))) continue;
+            if (d < closest - kFootTie * part_.size ||
+                (std::abs(d - closest) <= kFootTie * part_.size &&
+                 std::min(g.nodes[feet[k].node].mesh, g.nodes[feet[k1].node].mesh) <
+                     std::min(g.nodes[feet[pick].node].mesh, g.nodes[feet[(pick + 1) % m].node].mesh))) {
+              closest = std::min(d, closest);
+              pick = k;
+            }
+          }
+          if (pick == m) break;
+          const std::size_t next = (pick + 1) % m;
+          const double before = pick > 0 || closed ? gap((pick + m - 1) % m) : INFINITY;
+          const double after = next > 0 || closed ? gap(next) : INFINITY;
+          std::size_t gone;
+          if (feet[pick].fixed) {
+            gone = next;
+          } else if (feet[next].fixed) {
+            gone = pick;
+          } else if (std::abs(before - after) > kFootTie * part_.size) {
+            gone = before < after ? pick : next;
+          } else {
+            gone = g.nodes[feet[pick].node].mesh > g.nodes[feet[next].node].mesh ? pick : next;
+          }
+          for (std::uint32_t r : rails_at[feet[gone].node]) {
+            drop[r] = true;
+            ++result_.stats.crowded_feet;
+          }
+          feet.erase(feet.begin() + static_cast<std::ptrdiff_t>(gone));
+        }
       }
     }
     std::size_t k = 0;

@@ -56,7 +56,7 @@ class Clock {
 }  // namespace
 
 CutGraphOptions cut_graph_options(const Part& part,
-                                  const std::vector<MedialAxis>& axes,
+                                  std::vector<MedialAxis>& axes,
                                   const MeshPartOptions& options,
                                   std::unique_ptr<TrackWidthLaw>& law) {
   CutGraphOptions cg;
@@ -72,6 +72,9 @@ CutGraphOptions cut_graph_options(const Part& part,
   } else {
     cg.track_width = options.size.value_or(part.mesh.size.value_or(default_element_size(part)));
   }
+  const double h = law ? law->end_width() : cg.track_width;
+  if (h > 0.0)
+    for (MedialAxis& axis : axes) axis.choose_round_holes(h);
   return cg;
 }
 
@@ -82,7 +85,7 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
   MeshPartResult r;
   Clock clock;
   stage("medial");
-  const std::vector<MedialAxis> axes = compute_medial_axes(part);
+  std::vector<MedialAxis> axes = compute_medial_axes(part);
   r.times.medial = clock.lap();
   stage("rails");
   std::unique_ptr<TrackWidthLaw> law;

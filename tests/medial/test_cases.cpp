@@ -173,3 +173,49 @@ TEST_CASE("rotated, translated, mirrored and scaled parts give the same medial a
     }
   }
 }
+
+TEST_CASE("a round hole maps along rays from its centre where a chord end's fan would be wide",
+          "[medial][round]") {
+  // plate_with_hole: a hole of radius 4 in 24 chords of 15 degrees; the axis beside it reaches
+  // a radius of 7.18. A chord end's fan would gather (4 + 7.18) x 0.262 / h rails: 2.9 at
+  // h = 1, where the polygon's mapping stays; 29 at h = 0.1, where the hole maps along rays
+  // from its centre, one-to-one both ways, to the other side across the axis (session 23).
+  const std::pair<Transform, double> poses[] = {
+      {Transform{}, 1.0},
+      {compose(rotation({1.0, 2.0, 3.0}, 0.7), scaling(1e3)), 1e3},
+      {compose(mirror_x(), scaling(1e-3)), 1e-3}};
+  for (const auto& [t, unit] : poses) {
+    const Part part = build_part(transformed(read_brep_json(cases_dir() + "/plate_with_hole.json"), t));
+    std::vector<MedialAxis> axes = compute_medial_axes(part);
+    MedialAxis& axis = axes[0];
+    CHECK(axis.choose_round_holes(1.0 * unit) == 0);
+    CHECK(axis.round_circles().empty());
+    REQUIRE(axis.choose_round_holes(0.1 * unit) == 1);
+    const Circle2 c = axis.round_circles().front();
+    CHECK(c.radius == Approx(4.0 * unit));
+    const Polygon2& poly = part.patches[0].polygon;
+    const double tol = 1e-9 * part.size;
+    REQUIRE(poly.loops.size() == 2);
+    const auto& hole = poly.loops[1];
+    std::size_t checked = 0;
+    for (std::uint32_t i = 0; i < hole.size(); ++i) {
+      for (const double s : {0.05, 0.5, 0.95}) {
+        BoundaryPoint bp;
+        bp.site = {BoundarySite::Kind::Segment, 1, i};
+        bp.s = s;
+        bp.position = hole[i] + s * (hole[(i + 1) % hole.size()] - hole[i]);
+        const std::optional<MaPoint> m = axis.project(bp);
+        REQUIRE(m);
+        const Vec2 out = bp.position - c.centre, to = m->position - c.centre;
+        CHECK(std::abs(cross(out, to)) <= tol * norm(to));  // on the ray from the centre
+        CHECK(dot(out, to) > 0.0);
+        const Side far = axis.far_side(*m, bp);
+        const BoundaryPoint back = axis.touching_point(*m, far == Side::Left ? Side::Right : Side::Left);
+        CHECK(distance(back.position, bp.position) <= tol);
+        CHECK(axis.touching_point(*m, far).site.loop == 0);  // across the axis: the outline
+        ++checked;
+      }
+    }
+    CHECK(checked == 3 * hole.size());
+  }
+}

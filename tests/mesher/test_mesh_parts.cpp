@@ -273,16 +273,18 @@ TEST_CASE("the final untangling lifts the worst corners towards 0.75",
   // regions as grids: cover_bosses 1893 -> 1864, the tray 10668 -> 10674, cgal_Detmier
   // 222 -> 220, cgal_hole 1037 -> 1088; session 15's lattice template fills cover_bosses' large
   // faces with quads of their edge size: 1864 -> 1952; session 20's feet on smooth vertices
-  // (kTinyEndPiece): cover_bosses 1952 -> 1849, the tray 10674 -> 10662; and the cut
-  // template's chord scores settled: cgal_Detmier 220 -> 223.)
+  // (kTinyEndPiece): cover_bosses 1952 -> 1849, the tray 10674 -> 10662; the cut
+  // template's chord scores settled: cgal_Detmier 220 -> 223; session 23's round holes, their
+  // rails along rays from the centre and thinned where they crowd: cover_bosses 1849 -> 1972,
+  // the tray 10662 -> 10694.)
   const struct {
     std::string file;
     std::optional<double> size;
     std::size_t quads;
     double worst;
     double aspect_percent;
-  } cases[] = {{samples_dir() + "/cover_bosses.json", std::nullopt, 1849, 0.71, 0.6},
-               {samples_dir() + "/tray_ribs.json", 1.413, 10662, 0.69, 0.1},
+  } cases[] = {{samples_dir() + "/cover_bosses.json", std::nullopt, 1972, 0.71, 0.6},
+               {samples_dir() + "/tray_ribs.json", 1.413, 10694, 0.69, 0.1},
                {cases_dir() + "/external/cgal_Detmier.json", std::nullopt, 223, 0.70, 0.1},
                {cases_dir() + "/external/cgal_hole.json", std::nullopt, 1088, 0.74, 0.1}};
   for (const auto& c : cases) {
@@ -779,4 +781,32 @@ TEST_CASE("a shell of many patches is meshed the same on one core and on several
   for (std::size_t e = 0; same && e < one.mesh.elements.size(); ++e)
     same = one.mesh.elements[e].nodes == three.mesh.elements[e].nodes;
   CHECK(same);
+}
+
+TEST_CASE("a round hole's rails spread over it far below the size the part was made for",
+          "[mesh][round]") {
+  // plate_with_hole (mesh.size 1) at h = 0.1. Until session 23 the hole was a polygon of
+  // 15-degree chords to the rails: 18 rails, 7.2 long, met at one chord end 0.8 degrees apart,
+  // and the narrow-fan rule kept two, dropping the rest with their chains: a band 0.9 wide
+  // beside the right branch point's source rails (241 rails dropped; worst corner 0.751,
+  // taper <= 0.8 on 1.9% of the quads; at h = 0.02, 0.038). The hole now maps along rays
+  // from its centre (MedialAxis::choose_round_holes): no fan, and drop_crowded_feet thins
+  // the feet the wider outline crowds onto it (without it 0.752 and 0.73%).
+  for (const MeshPartResult& r : check_three_poses(finer(cases_dir() + "/plate_with_hole.json", 10.0), 0.78)) {
+    CHECK(r.stats.narrow_fans == 0);
+    CHECK(r.stats.crowded_feet > 0);
+    CHECK(r.quality.measures[2].bad_percent < 0.6);  // taper <= 0.8
+  }
+}
+
+TEST_CASE("rails crowding onto a small round hole are thinned to 0.65 h apart", "[mesh][round]") {
+  // cover_bosses: four bosses' holes of radius 3.5 in 16 chords of 22.5 degrees, h = 2; the
+  // axis beside them is wide enough that a chord end's fan would hold more than three rails,
+  // so the holes map along rays from their centres, and the outline's rails land
+  // R / (R + r) of their spacing apart. Without drop_crowded_feet: 2093 quads, worst 0.678, taper <= 0.8 on
+  // 20.4% (20.3% as polygons, before session 23); with it 0.753 and 14.2%.
+  for (const MeshPartResult& r : check_three_poses(read_brep_json(samples_dir() + "/cover_bosses.json"), 0.74)) {
+    CHECK(r.stats.crowded_feet > 0);
+    CHECK(r.quality.measures[2].bad_percent < 15.0);
+  }
 }

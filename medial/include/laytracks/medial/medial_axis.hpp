@@ -101,6 +101,10 @@ enum class VoronoiBackend : std::uint8_t {
   BoostOnly
 };
 
+/// MedialAxis::choose_round_holes: a concave circle is mapped along rays from its centre where
+/// a chord end's fan may hold more rails than this.
+inline constexpr double kRoundHoleFanRails = 3.0;
+
 /// A convex corner where the boundary turns by less than this (25 degrees) is nearly flat: the
 /// medial axis prunes its branch as an arc point's (docs/medial.md, step 5).
 inline constexpr double kFlatCornerTurn = 25.0 * 3.14159265358979323846 / 180.0;
@@ -165,6 +169,16 @@ class MedialAxis {
   /// The two-way mapping: boundary -> MA -> the other side (none when the axis is one point).
   std::optional<BoundaryPoint> opposite(const BoundaryPoint& p) const;
 
+  /// Round holes (docs/medial.md): the concave circles of the polygon (Polygon2::circles whose
+  /// region is outside: holes, concave fillets) that the mapping takes along rays from their
+  /// centres at this element size: those where a chord end's fan, the rails a polygon vertex
+  /// would gather, may hold more than kRoundHoleFanRails, (R + r) delta / h (R the radius,
+  /// delta the chord angle, r the largest radius of the axis beside the circle). The others,
+  /// and every circle until this is called, map as the polygon does. Returns how many.
+  std::size_t choose_round_holes(double element_size);
+  /// The circles choose_round_holes chose.
+  std::vector<Circle2> round_circles() const;
+
   /// Self-check: radii equal the distance to the boundary (1e-9 relative), vertices inside the
   /// polygon, degrees consistent, edges equidistant from their sites. Returns the problems
   /// found, each a sentence; empty when valid.
@@ -203,12 +217,26 @@ class MedialAxis {
     std::vector<Step> steps;
   };
   std::vector<SpreadZone> zones_;
+  /// Per Polygon2 circle: mapped along rays from its centre (choose_round_holes).
+  std::vector<char> round_;
   /// Indices into zones_, ascending: per segment (by cell_index / 2) the zones with a piece on
   /// it, per edge the zones mapped onto it (project and touching_point look up only these).
   std::vector<std::vector<std::uint32_t>> zones_on_segment_, zones_on_edge_;
 
   void find_spread_zones();
   const SpreadZone* zone_of(const BoundaryPoint& p) const;
+
+  /// The circle (Polygon2::circles) a site lies on when the region is outside it, a round
+  /// hole's or a concave fillet's, and choose_round_holes chose it: a segment that is a chord
+  /// of it with its centre on the right, or a corner between two such chords. -1 otherwise
+  /// (docs/medial.md, "Round holes").
+  int concave_circle(const BoundarySite& s) const;
+  /// Where the ray from circle k's centre through x crosses its chords in loop l, searched
+  /// from segment `hint` both ways along the run of them; empty when the ray passes the run.
+  std::optional<BoundaryPoint> radial_foot(std::uint32_t loop, std::uint32_t hint, int k, Vec2 x) const;
+  /// The nearest MA point on the ray from circle k's centre through boundary point x of
+  /// segment site `site`, among the edges of the cells of that run of chords and corners.
+  std::optional<MaPoint> radial_project(const BoundarySite& site, int k, Vec2 x) const;
 
   std::size_t cell_index(const BoundarySite& s) const;
   /// Parameter of x along edge e (unclamped), and the MA point there if x lies on the edge.

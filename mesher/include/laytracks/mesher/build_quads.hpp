@@ -39,6 +39,7 @@ struct QuadStats {
   /// Faces per template, in mesher_detail::FillKind order (kTemplateNames).
   std::array<std::size_t, kTemplateNames.size()> by_template{};
   std::size_t narrow_fans = 0;     ///< rails dropped: under 10 degrees from another at a node
+  std::size_t crowded_feet = 0;    ///< rails dropped: feet too close on a round hole
   std::size_t dangling_rails = 0;  ///< rail segments left out: their MA end met no other rail
   std::size_t fan_clusters = 0;    ///< MA nodes merged into a deeper one (merge_fan_clusters)
   /// rail feet moved onto a smooth B-Rep vertex within kTinyEndPiece x h of them

@@ -92,9 +92,11 @@ class InvalidMeshError : public InternalError {
 };
 
 /// The cut-graph options for these meshing options: the uniform track width, or in adaptive
-/// mode the width law, which `law` receives (it must outlive the options).
+/// mode the width law, which `law` receives (it must outlive the options). Also chooses, at
+/// that element size (adaptive: the law's finest width), which round holes the axes map along
+/// rays from their centres (MedialAxis::choose_round_holes).
 CutGraphOptions cut_graph_options(const Part& part,
-                                  const std::vector<MedialAxis>& axes,
+                                  std::vector<MedialAxis>& axes,
                                   const MeshPartOptions& options,
                                   std::unique_ptr<TrackWidthLaw>& law);
 
