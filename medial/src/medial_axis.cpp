@@ -447,8 +447,8 @@ std::size_t MedialAxis::choose_round_holes(double element_size) {
         }
         for (MaEdgeId id : cells_[cell_index(site)]) {
           const MaEdge& e = edges_[id.index()];
-          beside[kk] = std::max({beside[kk], vertices_[e.a.index()].radius,
-                                 vertices_[e.b.index()].radius});
+          beside[kk] =
+              std::max({beside[kk], vertices_[e.a.index()].radius, vertices_[e.b.index()].radius});
         }
       }
     }
@@ -457,7 +457,7 @@ std::size_t MedialAxis::choose_round_holes(double element_size) {
   for (std::size_t k = 0; k < nc; ++k) {
     const double fan = (polygon_.circles[k].radius + beside[k]) * delta[k] / element_size;
     round_[k] = concave[k] && fan > kRoundHoleFanRails ? 1 : 0;
-    chosen += round_[k];
+    if (round_[k]) ++chosen;
   }
   return chosen;
 }
@@ -467,8 +467,8 @@ namespace {
 /// Calls visit(j) for the segments of loop l that are chords of circle k, contiguous with
 /// segment `hint` (itself first, then onwards, then backwards), until visit returns true.
 template <class Visit>
-void walk_run(const Polygon2& poly, std::uint32_t l, std::uint32_t hint, std::int32_t k,
-              const Visit& visit) {
+void walk_run(
+    const Polygon2& poly, std::uint32_t l, std::uint32_t hint, std::int32_t k, const Visit& visit) {
   const std::vector<std::int32_t>& circle = poly.circle[l];
   const auto n = static_cast<std::uint32_t>(circle.size());
   std::uint32_t j = hint;
@@ -481,7 +481,9 @@ void walk_run(const Polygon2& poly, std::uint32_t l, std::uint32_t hint, std::in
 
 }  // namespace
 
-std::optional<BoundaryPoint> MedialAxis::radial_foot(std::uint32_t loop, std::uint32_t hint, int k,
+std::optional<BoundaryPoint> MedialAxis::radial_foot(std::uint32_t loop,
+                                                     std::uint32_t hint,
+                                                     int k,
                                                      Vec2 x) const {
   const Vec2 c = polygon_.circles[static_cast<std::size_t>(k)].centre;
   const Vec2 d = x - c;
@@ -507,7 +509,8 @@ std::optional<BoundaryPoint> MedialAxis::radial_foot(std::uint32_t loop, std::ui
   });
   const Vec2 start = seg_start(polygon_, loop, lo), end = seg_end(polygon_, loop, hi);
   const auto along = [&](Vec2 q) { return dot(q - c, d) / norm(q - c); };
-  if (along(end) >= along(start)) return BoundaryPoint{{BoundarySite::Kind::Segment, loop, hi}, 1.0, end};
+  if (along(end) >= along(start))
+    return BoundaryPoint{{BoundarySite::Kind::Segment, loop, hi}, 1.0, end};
   return BoundaryPoint{{BoundarySite::Kind::Segment, loop, lo}, 0.0, start};
 }
 

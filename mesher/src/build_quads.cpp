@@ -933,6 +933,7 @@ class QuadBuilder {
       const PartArc& arc = part_.arcs[static_cast<std::size_t>(un.arc)];
       const Vec2 c = frame.to_2d(arc.center), pa = g.nodes[e.a].p, pb = g.nodes[e.b].p;
       if (!(cross(pb - pa, c - pa) < 0.0)) return -1;  // convex: the patch is inside
+      if (pid.index() >= graph_.round_holes.size()) return -1;  // a graph made by hand
       const std::vector<Circle2>& round = graph_.round_holes[pid.index()];
       if (std::none_of(round.begin(), round.end(), [&](const Circle2& r) {
             return distance(r.centre, c) <= tol && std::abs(r.radius - arc.radius) <= tol;
@@ -998,7 +999,8 @@ class QuadBuilder {
             if (d < closest - kFootTie * part_.size ||
                 (std::abs(d - closest) <= kFootTie * part_.size &&
                  std::min(g.nodes[feet[k].node].mesh, g.nodes[feet[k1].node].mesh) <
-                     std::min(g.nodes[feet[pick].node].mesh, g.nodes[feet[(pick + 1) % m].node].mesh))) {
+                     std::min(g.nodes[feet[pick].node].mesh,
+                              g.nodes[feet[(pick + 1) % m].node].mesh))) {
               closest = std::min(d, closest);
               pick = k;
             }
@@ -1026,9 +1028,9 @@ class QuadBuilder {
       }
     }
     std::size_t k = 0;
-    g.edges.erase(std::remove_if(g.edges.begin(), g.edges.end(),
-                                 [&](const CEdge&) { return drop[k++]; }),
-                  g.edges.end());
+    g.edges.erase(
+        std::remove_if(g.edges.begin(), g.edges.end(), [&](const CEdge&) { return drop[k++]; }),
+        g.edges.end());
   }
 
   /// Per node of a patch graph: the mean mesh-edge length of the boundary pieces at it (0 for

@@ -185,7 +185,8 @@ TEST_CASE("a round hole maps along rays from its centre where a chord end's fan 
       {compose(rotation({1.0, 2.0, 3.0}, 0.7), scaling(1e3)), 1e3},
       {compose(mirror_x(), scaling(1e-3)), 1e-3}};
   for (const auto& [t, unit] : poses) {
-    const Part part = build_part(transformed(read_brep_json(cases_dir() + "/plate_with_hole.json"), t));
+    const Part part =
+        build_part(transformed(read_brep_json(cases_dir() + "/plate_with_hole.json"), t));
     std::vector<MedialAxis> axes = compute_medial_axes(part);
     MedialAxis& axis = axes[0];
     CHECK(axis.choose_round_holes(1.0 * unit) == 0);
@@ -210,7 +211,8 @@ TEST_CASE("a round hole maps along rays from its centre where a chord end's fan 
         CHECK(std::abs(cross(out, to)) <= tol * norm(to));  // on the ray from the centre
         CHECK(dot(out, to) > 0.0);
         const Side far = axis.far_side(*m, bp);
-        const BoundaryPoint back = axis.touching_point(*m, far == Side::Left ? Side::Right : Side::Left);
+        const BoundaryPoint back =
+            axis.touching_point(*m, far == Side::Left ? Side::Right : Side::Left);
         CHECK(distance(back.position, bp.position) <= tol);
         CHECK(axis.touching_point(*m, far).site.loop == 0);  // across the axis: the outline
         ++checked;

@@ -792,7 +792,8 @@ TEST_CASE("a round hole's rails spread over it far below the size the part was m
   // taper <= 0.8 on 1.9% of the quads; at h = 0.02, 0.038). The hole now maps along rays
   // from its centre (MedialAxis::choose_round_holes): no fan, and drop_crowded_feet thins
   // the feet the wider outline crowds onto it (without it 0.752 and 0.73%).
-  for (const MeshPartResult& r : check_three_poses(finer(cases_dir() + "/plate_with_hole.json", 10.0), 0.78)) {
+  for (const MeshPartResult& r :
+       check_three_poses(finer(cases_dir() + "/plate_with_hole.json", 10.0), 0.78)) {
     CHECK(r.stats.narrow_fans == 0);
     CHECK(r.stats.crowded_feet > 0);
     CHECK(r.quality.measures[2].bad_percent < 0.6);  // taper <= 0.8
@@ -803,9 +804,10 @@ TEST_CASE("rails crowding onto a small round hole are thinned to 0.65 h apart", 
   // cover_bosses: four bosses' holes of radius 3.5 in 16 chords of 22.5 degrees, h = 2; the
   // axis beside them is wide enough that a chord end's fan would hold more than three rails,
   // so the holes map along rays from their centres, and the outline's rails land
-  // R / (R + r) of their spacing apart. Without drop_crowded_feet: 2093 quads, worst 0.678, taper <= 0.8 on
-  // 20.4% (20.3% as polygons, before session 23); with it 0.753 and 14.2%.
-  for (const MeshPartResult& r : check_three_poses(read_brep_json(samples_dir() + "/cover_bosses.json"), 0.74)) {
+  // R / (R + r) of their spacing apart. Without drop_crowded_feet: 2093 quads, worst 0.678,
+  // taper <= 0.8 on 20.4% (20.3% as polygons, before session 23); with it 0.753 and 14.2%.
+  for (const MeshPartResult& r :
+       check_three_poses(read_brep_json(samples_dir() + "/cover_bosses.json"), 0.74)) {
     CHECK(r.stats.crowded_feet > 0);
     CHECK(r.quality.measures[2].bad_percent < 15.0);
   }

@@ -233,7 +233,10 @@ class MedialAxis {
   int concave_circle(const BoundarySite& s) const;
   /// Where the ray from circle k's centre through x crosses its chords in loop l, searched
   /// from segment `hint` both ways along the run of them; empty when the ray passes the run.
-  std::optional<BoundaryPoint> radial_foot(std::uint32_t loop, std::uint32_t hint, int k, Vec2 x) const;
+  std::optional<BoundaryPoint> radial_foot(std::uint32_t loop,
+                                           std::uint32_t hint,
+                                           int k,
+                                           Vec2 x) const;
   /// The nearest MA point on the ray from circle k's centre through boundary point x of
   /// segment site `site`, among the edges of the cells of that run of chords and corners.
   std::optional<MaPoint> radial_project(const BoundarySite& site, int k, Vec2 x) const;
