@@ -36,6 +36,8 @@ constexpr double kMinSpreadReach = 1e-3;
 constexpr double kSpreadShare = 0.45;
 /// ... and at most this fraction of the way to a branch point.
 constexpr double kSpreadToBranch = 0.75;
+/// choose_round_holes: fans within this relative slack of the limit count as at it.
+constexpr double kRoundHoleSlack = 1e-7;
 /// validate() compares radii against a brute-force distance to every segment; above this many
 /// vertex x segment pairs it checks an evenly spread subset of the vertices.
 constexpr double kBruteForceBudget = 5e7;
@@ -456,7 +458,9 @@ std::size_t MedialAxis::choose_round_holes(double element_size) {
   std::size_t chosen = 0;
   for (std::size_t k = 0; k < nc; ++k) {
     const double fan = (polygon_.circles[k].radius + beside[k]) * delta[k] / element_size;
-    round_[k] = concave[k] && fan > kRoundHoleFanRails ? 1 : 0;
+    // With the rounding slack of the mesher's counts: a fan of exactly three in one pose is
+    // one in every pose.
+    round_[k] = concave[k] && fan > kRoundHoleFanRails * (1.0 + kRoundHoleSlack) ? 1 : 0;
     if (round_[k]) ++chosen;
   }
   return chosen;
