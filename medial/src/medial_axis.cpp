@@ -504,18 +504,25 @@ std::optional<BoundaryPoint> MedialAxis::radial_foot(std::uint32_t loop,
   if (out) return out;
   // The ray passes an end of the run (a point of the axis beside the arc's end): that end, so
   // that the feet keep their order along the boundary as the point moves.
-  std::uint32_t lo = hint, hi = hint;
+  // The run's first and last chords (the hint itself may be the tangent line beyond its end).
+  const auto n = static_cast<std::uint32_t>(polygon_.loops[loop].size());
+  std::optional<std::uint32_t> lo, hi;
   walk_run(polygon_, loop, hint, k, [&](std::uint32_t j) {
-    const auto n = static_cast<std::uint32_t>(polygon_.loops[loop].size());
-    if (j == (hi + 1) % n) hi = j;
-    if (j == (lo + n - 1) % n) lo = j;
+    if (!hi) {
+      lo = hi = j;
+    } else if (j == (*hi + 1) % n) {
+      hi = j;
+    } else if (j == (*lo + n - 1) % n) {
+      lo = j;
+    }
     return false;
   });
-  const Vec2 start = seg_start(polygon_, loop, lo), end = seg_end(polygon_, loop, hi);
+  if (!hi) return std::nullopt;
+  const Vec2 start = seg_start(polygon_, loop, *lo), end = seg_end(polygon_, loop, *hi);
   const auto along = [&](Vec2 q) { return dot(q - c, d) / norm(q - c); };
   if (along(end) >= along(start))
-    return BoundaryPoint{{BoundarySite::Kind::Segment, loop, hi}, 1.0, end};
-  return BoundaryPoint{{BoundarySite::Kind::Segment, loop, lo}, 0.0, start};
+    return BoundaryPoint{{BoundarySite::Kind::Segment, loop, *hi}, 1.0, end};
+  return BoundaryPoint{{BoundarySite::Kind::Segment, loop, *lo}, 0.0, start};
 }
 
 std::optional<MaPoint> MedialAxis::radial_project(const BoundarySite& site, int k, Vec2 x) const {

@@ -232,7 +232,8 @@ class MedialAxis {
   /// (docs/medial.md, "Round holes").
   int concave_circle(const BoundarySite& s) const;
   /// Where the ray from circle k's centre through x crosses its chords in loop l, searched
-  /// from segment `hint` both ways along the run of them; empty when the ray passes the run.
+  /// from segment `hint` both ways along the run of them; where the ray passes the run, the
+  /// run's end nearer the ray. Empty only when no chord of k is next to `hint`.
   std::optional<BoundaryPoint> radial_foot(std::uint32_t loop,
                                            std::uint32_t hint,
                                            int k,
