@@ -145,7 +145,17 @@ CutGraph build_cut_graph(const Part& part,
                          const std::vector<MedialAxis>& axes,
                          const CutGraphOptions& options) {
   CutGraph graph;
-  for (const MedialAxis& axis : axes) graph.round_holes.push_back(axis.round_circles());
+  for (std::size_t p = 0; p < part.patches.size(); ++p) {
+    const Patch& patch = part.patches[p];
+    std::vector<std::int32_t>& round = graph.round_arcs.emplace_back(part.arcs.size(), -1);
+    for (std::size_t l = 0; l < patch.loops.size() && !patch.polygon.circle.empty(); ++l)
+      for (std::size_t i = 0; i < patch.loops[l].edges.size(); ++i) {
+        const std::int32_t k = patch.polygon.circle[l][i];
+        const std::int64_t arc = part.edges[patch.loops[l].edges[i].index()].arc;
+        if (k >= 0 && arc >= 0 && axes[p].is_round(static_cast<std::size_t>(k)))
+          round[static_cast<std::size_t>(arc)] = k;
+      }
+  }
   std::vector<Vec3> suppressed;
   const TrackWidthLaw* law = options.adaptive;
   const bool tracks = options.track_width > 0.0 || law;

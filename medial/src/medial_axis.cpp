@@ -115,6 +115,19 @@ MedialAxis::MedialAxis(Polygon2 polygon, std::vector<MaVertex> vertices, std::ve
     cells_[cell_index(e.right)].push_back(MaEdgeId(i));
   }
   find_spread_zones();
+  // Per segment: the circle it is a chord of when the region lies outside that circle (its
+  // centre right of the segment), else -1 (site_circle).
+  if (!polygon_.circle.empty()) {
+    chord_circle_.assign(loop_offset_.back(), -1);
+    for (std::uint32_t l = 0; l < polygon_.loops.size(); ++l)
+      for (std::uint32_t j = 0; j < polygon_.loops[l].size(); ++j) {
+        const std::int32_t k = polygon_.circle[l][j];
+        const Vec2 a = seg_start(polygon_, l, j);
+        if (k >= 0 && cross(seg_end(polygon_, l, j) - a,
+                            polygon_.circles[static_cast<std::size_t>(k)].centre - a) < 0.0)
+          chord_circle_[loop_offset_[l] + j] = k;
+      }
+  }
 }
 
 void MedialAxis::find_spread_zones() {
@@ -394,31 +407,23 @@ const MedialAxis::SpreadZone* MedialAxis::zone_of(const BoundaryPoint& p) const 
   return nullptr;
 }
 
+int MedialAxis::site_circle(const BoundarySite& s) const {
+  if (chord_circle_.empty()) return -1;
+  const std::size_t at = loop_offset_[s.loop];
+  if (s.kind == BoundarySite::Kind::Segment) return chord_circle_[at + s.index];
+  // A corner between two chords of the circle, or where the circle meets a tangent line (the
+  // end of a slot's round end): its cell's points map along rays too, onto the chords.
+  const auto n = static_cast<std::uint32_t>(polygon_.loops[s.loop].size());
+  const std::int32_t in = chord_circle_[at + (s.index + n - 1) % n],
+                     out = chord_circle_[at + s.index];
+  if (in >= 0 && in == out) return in;
+  if ((in >= 0) != (out >= 0) && polygon_.smooth[s.loop][s.index]) return in >= 0 ? in : out;
+  return -1;
+}
+
 int MedialAxis::concave_circle(const BoundarySite& s) const {
   if (round_.empty()) return -1;
-  const std::vector<std::int32_t>& circle = polygon_.circle[s.loop];
-  const auto n = static_cast<std::uint32_t>(circle.size());
-  const auto concave = [&](std::uint32_t j) {
-    const std::int32_t k = circle[j];
-    if (k < 0) return false;
-    const Vec2 a = seg_start(polygon_, s.loop, j);
-    return cross(seg_end(polygon_, s.loop, j) - a,
-                 polygon_.circles[static_cast<std::size_t>(k)].centre - a) < 0.0;
-  };
-  std::int32_t k = -1;
-  if (s.kind == BoundarySite::Kind::Segment) {
-    if (concave(s.index)) k = circle[s.index];
-  } else {
-    // A corner between two chords of the circle, or where the circle meets a tangent line
-    // (the end of a slot's round end): its cell's points map along rays too, onto the chords.
-    const std::uint32_t before = (s.index + n - 1) % n;
-    const bool in = concave(before), out = concave(s.index);
-    if (in && out && circle[before] == circle[s.index]) {
-      k = circle[s.index];
-    } else if (in != out && polygon_.smooth[s.loop][s.index]) {
-      k = in ? circle[before] : circle[s.index];
-    }
-  }
+  const int k = site_circle(s);
   return k >= 0 && round_[static_cast<std::size_t>(k)] ? k : -1;
 }
 
@@ -431,14 +436,14 @@ std::vector<Circle2> MedialAxis::round_circles() const {
 
 std::size_t MedialAxis::choose_round_holes(double element_size) {
   const std::size_t nc = polygon_.circles.size();
-  round_.assign(nc, 1);  // so that concave_circle names every concave circle's sites
+  round_.assign(nc, 0);
   std::vector<double> delta(nc, 0.0), beside(nc, 0.0);
   std::vector<char> concave(nc, 0);
   for (std::uint32_t l = 0; l < polygon_.circle.size(); ++l) {
     for (std::uint32_t j = 0; j < polygon_.circle[l].size(); ++j) {
       for (const BoundarySite site : {BoundarySite{BoundarySite::Kind::Segment, l, j},
                                       BoundarySite{BoundarySite::Kind::Corner, l, j}}) {
-        const int k = concave_circle(site);
+        const int k = site_circle(site);
         if (k < 0) continue;
         const auto kk = static_cast<std::size_t>(k);
         concave[kk] = 1;

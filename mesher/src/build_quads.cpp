@@ -914,8 +914,6 @@ class QuadBuilder {
   /// out; the run's own ends stay. Gaps alike to kFootTie x the part's size are a tie, which
   /// the foot with the greater mesh node id loses: every pose drops the same rails.
   void drop_crowded_feet(PatchId pid, PatchGraph& g) {
-    const Frame& frame = part_.patches[pid.index()].frame;
-    const double tol = kSamePointRel * part_.size;
     std::vector<std::vector<std::uint32_t>> rails_at(g.nodes.size());
     for (std::uint32_t i = 0; i < g.edges.size(); ++i)
       if (g.edges[i].rail) rails_at[g.edges[i].a].push_back(i);
@@ -925,25 +923,11 @@ class QuadBuilder {
       if (loops.empty() || g.edges[loops.back().back()].b != g.edges[i].a) loops.emplace_back();
       loops.back().push_back(i);
     }
-    // Per boundary edge: the index of its concave circle in `circles`, or -1.
-    std::vector<std::pair<Vec2, double>> circles;
+    // Per boundary edge: its round hole's circle (CutGraph::round_arcs), or -1.
     const auto circle_of = [&](const CEdge& e) -> int {
       const Unit& un = units_[e.edge];
-      if (un.arc < 0) return -1;
-      const PartArc& arc = part_.arcs[static_cast<std::size_t>(un.arc)];
-      const Vec2 c = frame.to_2d(arc.center), pa = g.nodes[e.a].p, pb = g.nodes[e.b].p;
-      if (!(cross(pb - pa, c - pa) < 0.0)) return -1;  // convex: the patch is inside
-      if (pid.index() >= graph_.round_holes.size()) return -1;  // a graph made by hand
-      const std::vector<Circle2>& round = graph_.round_holes[pid.index()];
-      if (std::none_of(round.begin(), round.end(), [&](const Circle2& r) {
-            return distance(r.centre, c) <= tol && std::abs(r.radius - arc.radius) <= tol;
-          }))
-        return -1;  // mapped as the polygon is: its rails meet at the chords' ends
-      for (std::size_t k = 0; k < circles.size(); ++k)
-        if (distance(circles[k].first, c) <= tol && std::abs(circles[k].second - arc.radius) <= tol)
-          return static_cast<int>(k);
-      circles.emplace_back(c, arc.radius);
-      return static_cast<int>(circles.size() - 1);
+      if (un.arc < 0 || pid.index() >= graph_.round_arcs.size()) return -1;  // or made by hand
+      return graph_.round_arcs[pid.index()][static_cast<std::size_t>(un.arc)];
     };
     std::vector<bool> drop(g.edges.size(), false);
     struct Foot {

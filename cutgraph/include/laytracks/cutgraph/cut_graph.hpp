@@ -125,9 +125,10 @@ struct CutGraph {
   std::size_t narrow_kept = 0;
   /// Rounds of narrow-corridor removal that deleted rails (each lays the source rails again).
   std::size_t narrow_rounds = 0;
-  /// Per patch, the round holes its rails land on along rays from their centres
-  /// (MedialAxis::choose_round_holes), in the patch frame.
-  std::vector<std::vector<Circle2>> round_holes;
+  /// Per patch, per arc of the part (Part::arcs): the round hole its rails land on along rays
+  /// from the centre (MedialAxis::choose_round_holes), as the index of its circle in the
+  /// patch's Polygon2::circles; -1 for the other arcs.
+  std::vector<std::vector<std::int32_t>> round_arcs;
   std::size_t corridor_count = 0;  ///< corridors between the source rails (after deletions)
   std::size_t track_count = 0;     ///< tracks, once the track rails are laid
 };

@@ -178,6 +178,8 @@ class MedialAxis {
   std::size_t choose_round_holes(double element_size);
   /// The circles choose_round_holes chose.
   std::vector<Circle2> round_circles() const;
+  /// Whether it chose Polygon2::circles[k].
+  bool is_round(std::size_t k) const { return k < round_.size() && round_[k] != 0; }
 
   /// Self-check: radii equal the distance to the boundary (1e-9 relative), vertices inside the
   /// polygon, degrees consistent, edges equidistant from their sites. Returns the problems
@@ -219,6 +221,9 @@ class MedialAxis {
   std::vector<SpreadZone> zones_;
   /// Per Polygon2 circle: mapped along rays from its centre (choose_round_holes).
   std::vector<char> round_;
+  /// Per segment (by loop_offset_): the circle it is a chord of with the region outside it,
+  /// or -1; empty when the polygon names no circles.
+  std::vector<std::int32_t> chord_circle_;
   /// Indices into zones_, ascending: per segment (by cell_index / 2) the zones with a piece on
   /// it, per edge the zones mapped onto it (project and touching_point look up only these).
   std::vector<std::vector<std::uint32_t>> zones_on_segment_, zones_on_edge_;
@@ -231,6 +236,8 @@ class MedialAxis {
   /// of it with its centre on the right, or a corner between two such chords. -1 otherwise
   /// (docs/medial.md, "Round holes").
   int concave_circle(const BoundarySite& s) const;
+  /// The same whether chosen or not (choose_round_holes picks among these).
+  int site_circle(const BoundarySite& s) const;
   /// Where the ray from circle k's centre through x crosses its chords in loop l, searched
   /// from segment `hint` both ways along the run of them; where the ray passes the run, the
   /// run's end nearer the ray. Empty only when no chord of k is next to `hint`.
