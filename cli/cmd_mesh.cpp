@@ -112,6 +112,7 @@ int run_mesh(const std::vector<std::string>& argv) {
     doc["faces"] = r.stats.faces;
     for (std::size_t k = 0; k < kTemplateNames.size(); ++k)
       doc["faces_by_template"][kTemplateNames[k]] = r.stats.by_template[k];
+    doc["faces_shared"] = r.stats.shared_faces;
     doc["narrow_fans_dropped"] = r.stats.narrow_fans;
     doc["crowded_feet_dropped"] = r.stats.crowded_feet;
     doc["fan_cluster_merges"] = r.stats.fan_clusters;

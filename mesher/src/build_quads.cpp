@@ -38,6 +38,11 @@ using namespace mesher_detail;
 namespace {
 
 constexpr std::uint32_t kNone = 0xffffffffu;
+constexpr std::size_t kNoSource = static_cast<std::size_t>(-1);
+/// A face given the moved quads of an earlier one keeps them when their worst corner is at
+/// most this below the source's (rounding in the motion; a larger loss means the shapes
+/// differ where the tolerance did not see it, and the face is filled anew).
+constexpr double kSharedFaceSlack = 1e-6;
 /// A boundary piece longer than this x h is split into round(length / h) mesh edges.
 constexpr double kSplitPiece = 2.0;
 /// Lengths are compared with h this much below their exact value (relative), so that a length
@@ -1506,10 +1511,49 @@ class QuadBuilder {
       filled[p].resize(pending[p].size());
       for (std::size_t f = 0; f < pending[p].size(); ++f) jobs.emplace_back(p, f);
     }
-    parallel_for(jobs.size(), [&](std::size_t j) {
+    // A large face that is an earlier one moved (turned, mirrored, scaled) takes its quads,
+    // moved (kSharedFaceNodes): the first of its kind in job order is filled, in every pose.
+    std::vector<std::size_t> source(jobs.size(), kNoSource);
+    std::vector<std::optional<FaceMotion>> motion(jobs.size());
+    std::vector<std::size_t> originals;  // large faces filled from scratch
+    for (std::size_t j = 0; j < jobs.size(); ++j) {
+      const FaceInput& in = pending[jobs[j].first][jobs[j].second].in;
+      if (in.cycle.size() < kSharedFaceNodes) continue;
+      for (std::size_t o : originals) {
+        motion[j] = face_motion(pending[jobs[o].first][jobs[o].second].in, in);
+        if (motion[j]) {
+          source[j] = o;
+          break;
+        }
+      }
+      if (!motion[j]) originals.push_back(j);
+    }
+    const auto fill_jobs = [&](const std::vector<std::size_t>& which) {
+      parallel_for(which.size(), [&](std::size_t w) {
+        const auto [p, f] = jobs[which[w]];
+        filled[p][f] = fill_face(pending[p][f].in, pending[p][f].where);
+      });
+    };
+    std::vector<std::size_t> first_pass;
+    for (std::size_t j = 0; j < jobs.size(); ++j)
+      if (source[j] == kNoSource) first_pass.push_back(j);
+    fill_jobs(first_pass);
+    // A moved copy must score as its source did (up to rounding), else it is filled anew.
+    std::vector<std::size_t> second_pass;
+    for (std::size_t j = 0; j < jobs.size(); ++j) {
+      if (source[j] == kNoSource) continue;
       const auto [p, f] = jobs[j];
-      filled[p][f] = fill_face(pending[p][f].in, pending[p][f].where);
-    });
+      const FaceMesh& from = filled[jobs[source[j]].first][jobs[source[j]].second];
+      FaceMesh moved = moved_fill(from, pending[p][f].in, *motion[j]);
+      if (from.min_jacobian >= kAcceptJacobian &&
+          moved.min_jacobian >= from.min_jacobian - kSharedFaceSlack) {
+        filled[p][f] = std::move(moved);
+        ++result_.stats.shared_faces;
+      } else {
+        second_pass.push_back(j);
+      }
+    }
+    fill_jobs(second_pass);
     std::vector<std::size_t> inner_from(np), inner_to(np);
     for (std::size_t p = 0; p < np; ++p) {
       inner_from[p] = result_.mesh.nodes.size();

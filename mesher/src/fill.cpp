@@ -2184,6 +2184,107 @@ FaceMesh fill_face(const FaceInput& face, const std::string& where) {
   throw InternalError(s.str());
 }
 
+Vec2 FaceMotion::apply(Vec2 p) const {
+  Vec2 d = p - from_centre;
+  if (mirrored) d.y = -d.y;
+  return to_centre + Vec2{c * d.x - s * d.y, s * d.x + c * d.y};
+}
+
+namespace {
+
+/// Per cycle node of a face: whether a side starts there, whether it is a joint of its rail
+/// chain, whether it is free; and per edge (k to k + 1) whether it is a rail's.
+struct NodeMarks {
+  std::vector<bool> corner, joint, free, rail;
+  explicit NodeMarks(const FaceInput& f) {
+    const std::size_t n = f.cycle.size();
+    corner.assign(n, false);
+    joint.assign(n, false);
+    rail.assign(n, false);
+    free.assign(n, false);
+    for (const FaceSide& side : f.sides) {
+      corner[side.first % n] = true;
+      for (std::uint32_t k = 0; k < side.edges; ++k)
+        rail[(side.first + k) % n] = side.kind == FaceSide::Kind::Rail;
+      for (std::uint32_t j : side.joints) joint[(side.first + j) % n] = true;
+    }
+    for (std::size_t k = 0; k < n && k < f.free_nodes.size(); ++k) free[k] = f.free_nodes[k];
+  }
+};
+
+}  // namespace
+
+std::optional<FaceMotion> face_motion(const FaceInput& from, const FaceInput& to) {
+  const std::size_t n = to.cycle.size();
+  if (from.cycle.size() != n || from.sides.size() != to.sides.size() || n < 3) return std::nullopt;
+  const NodeMarks a(from), b(to);
+  const double inv_n = 1.0 / static_cast<double>(n);
+  double mean_edge = 0.0;
+  for (std::size_t k = 0; k < n; ++k)
+    mean_edge += distance(to.cycle[k], to.cycle[(k + 1) % n]) * inv_n;
+  const double tolerance = kCongruentTolerance * mean_edge;
+  Vec2 to_centre{0.0, 0.0}, from_centre{0.0, 0.0};
+  for (std::size_t k = 0; k < n; ++k) {
+    to_centre = to_centre + inv_n * to.cycle[k];
+    from_centre = from_centre + inv_n * from.cycle[k];
+  }
+  FaceMotion m;
+  m.node.resize(n);
+  for (int mirrored = 0; mirrored < 2; ++mirrored)
+    for (std::size_t shift = 0; shift < n; ++shift) {
+      // to's node k is from's node shift + k, or shift - k (mirrored: the cycle runs back).
+      for (std::size_t k = 0; k < n; ++k)
+        m.node[k] = static_cast<std::uint32_t>(mirrored ? (shift + n - k) % n : (shift + k) % n);
+      bool same = true;
+      for (std::size_t k = 0; k < n && same; ++k) {
+        const std::uint32_t i = m.node[k];
+        // to's edge k -> k + 1 is from's edge i -> i + 1, or i - 1 -> i when mirrored.
+        const std::uint32_t edge = mirrored ? m.node[(k + 1) % n] : i;
+        same = a.corner[i] == b.corner[k] && a.joint[i] == b.joint[k] && a.free[i] == b.free[k] &&
+               a.rail[edge] == b.rail[k];
+      }
+      if (!same) continue;
+      // The similarity fitted to the nodes about their centres (least squares, closed form).
+      double dot_sum = 0.0, cross_sum = 0.0, norm_sum = 0.0;
+      for (std::size_t k = 0; k < n; ++k) {
+        Vec2 p = from.cycle[m.node[k]] - from_centre;
+        if (mirrored) p.y = -p.y;
+        const Vec2 q = to.cycle[k] - to_centre;
+        dot_sum += dot(p, q);
+        cross_sum += cross(p, q);
+        norm_sum += dot(p, p);
+      }
+      if (!(norm_sum > 0.0)) continue;
+      m.mirrored = mirrored != 0;
+      m.from_centre = from_centre;
+      m.to_centre = to_centre;
+      m.c = dot_sum / norm_sum;
+      m.s = cross_sum / norm_sum;
+      for (std::size_t k = 0; k < n && same; ++k)
+        same = distance(m.apply(from.cycle[m.node[k]]), to.cycle[k]) <= tolerance;
+      if (same) return m;
+    }
+  return std::nullopt;
+}
+
+FaceMesh moved_fill(const FaceMesh& filled, const FaceInput& to, const FaceMotion& motion) {
+  const auto n = static_cast<std::uint32_t>(to.cycle.size());
+  std::vector<std::uint32_t> rename(n);  // from's cycle node -> to's
+  for (std::uint32_t k = 0; k < n; ++k) rename[motion.node[k]] = k;
+  FaceMesh out;
+  out.kind = filled.kind;
+  for (const Vec2& p : filled.interior) out.interior.push_back(motion.apply(p));
+  for (const auto& q : filled.quads) {
+    std::array<std::uint32_t, 4> r{};
+    for (std::size_t i = 0; i < 4; ++i) r[i] = q[i] < n ? rename[q[i]] : q[i];
+    if (motion.mirrored) std::swap(r[1], r[3]);
+    out.quads.push_back(r);
+  }
+  const auto pos = [&](std::uint32_t i) { return i < n ? to.cycle[i] : out.interior[i - n]; };
+  out.min_jacobian = face_score(out.quads, pos, to);
+  return out;
+}
+
 std::optional<FaceMesh> fill_cavity(const FaceInput& face) {
   const std::size_t n = face.cycle.size();
   if (n < 4 || n % 2 != 0) return std::nullopt;

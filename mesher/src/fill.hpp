@@ -122,6 +122,37 @@ FaceMesh fill_face(const FaceInput& face, const std::string& where);
 /// valid quads.
 std::optional<FaceMesh> fill_cavity(const FaceInput& face);
 
+/// Faces of at least this many nodes are looked for among the faces filled before them
+/// (face_motion): filling one takes 10-70 ms when it goes to the unstructured templates, and
+/// parts repeat their features (a row of bosses, a symmetric cover: cover_bosses has four
+/// copies each of a 46-node and a 56-node face). Smaller faces cost less than the search.
+constexpr std::size_t kSharedFaceNodes = 32;
+
+/// Two faces are one moved onto the other when every node lands within this x the mean edge
+/// of the second: far above rounding (1e-15), far below any difference of shape a template
+/// reads.
+constexpr double kCongruentTolerance = 1e-7;
+
+/// How face `to` is face `from` moved: turned, perhaps mirrored, scaled and shifted (a
+/// similarity fitted to all the nodes), its cycle node k being from's node `node[k]`.
+struct FaceMotion {
+  std::vector<std::uint32_t> node;
+  bool mirrored = false;
+  Vec2 from_centre, to_centre;
+  double c = 1.0, s = 0.0;  ///< scale x cos and scale x sin of the turn, after the mirror
+  Vec2 apply(Vec2 p) const;
+};
+
+/// The motion taking `from` to `to`, when there is one: the same node count, the same sides
+/// (kinds, corners, joints) and free nodes in the same places, and every node within
+/// kCongruentTolerance of its image. Cycles may start at any node; a mirror runs them the
+/// other way.
+std::optional<FaceMotion> face_motion(const FaceInput& from, const FaceInput& to);
+
+/// `filled` (the quads of face `from`) moved onto face `to`: interior nodes by the motion,
+/// cycle nodes renamed, quads turned back counter-clockwise after a mirror, and scored on `to`.
+FaceMesh moved_fill(const FaceMesh& filled, const FaceInput& to, const FaceMotion& motion);
+
 /// Templates are tried in order while their worst corner is below this scaled Jacobian.
 constexpr double kAcceptJacobian = 0.3;
 

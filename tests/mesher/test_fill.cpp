@@ -1,11 +1,12 @@
 // The face templates on their own: every simple polygon with an even node count gets valid
 // quads (the cut and pairs templates take what the structured ones cannot), and the faces
 // that once made parts fail.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <random>
 
 #include "fill.hpp"
@@ -448,6 +449,93 @@ TEST_CASE("an L-shaped face is cut at its reflex corner into pieces that are gri
     CHECK(m.min_jacobian > 0.55);
     CHECK(tapered_quads(r.f, m) <= 4u);
   }
+}
+
+namespace {
+
+/// `f` moved: its node `shift` first, turned by `turn`, scaled, shifted by `by`; mirrored
+/// (y -> -y, the cycle run backwards to stay counter-clockwise) when `mirror`.
+FaceInput moved_face(
+    const FaceInput& f, std::uint32_t shift, bool mirror, double turn, double scale, Vec2 by) {
+  const auto n = static_cast<std::uint32_t>(f.cycle.size());
+  const double c = scale * std::cos(turn), s = scale * std::sin(turn);
+  auto move = [&](Vec2 p) {
+    if (mirror) p.y = -p.y;
+    return by + Vec2{c * p.x - s * p.y, s * p.x + c * p.y};
+  };
+  // The copy's node k is f's node from(k).
+  auto from = [&](std::uint32_t k) { return mirror ? (shift + n - k) % n : (shift + k) % n; };
+  FaceInput g;
+  g.free_nodes.assign(n, false);
+  for (std::uint32_t k = 0; k < n; ++k) {
+    g.cycle.push_back(move(f.cycle[from(k)]));
+    g.free_nodes[k] = from(k) < f.free_nodes.size() && f.free_nodes[from(k)];
+  }
+  for (const FaceSide& side : f.sides) {
+    FaceSide t = side;
+    // Mirrored, the side runs from f's node first + edges, which is the copy's node
+    // shift - first - edges.
+    t.first =
+        mirror ? (2 * n + shift - side.first - side.edges) % n : (n + side.first - shift % n) % n;
+    t.joints.clear();
+    for (std::uint32_t j : side.joints) t.joints.push_back(mirror ? side.edges - j : j);
+    g.sides.push_back(t);
+  }
+  if (mirror) std::reverse(g.sides.begin(), g.sides.end());
+  return g;
+}
+
+}  // namespace
+
+TEST_CASE("a face that is another one turned, mirrored, scaled and shifted takes its quads, moved",
+          "[fill][shared]") {
+  // The L of the reflex-cut test, a rail joint and free nodes marked: face_motion must find
+  // the copy from any start node, mirrored or not, and the moved quads must be valid quads of
+  // the copy, as good as the original's; a copy with a node off by 1e-4 of an edge, or with a
+  // side of the other kind, or a joint elsewhere, is another face.
+  FaceRuns r;
+  using K = FaceSide::Kind;
+  r.run(K::Boundary, {{0, 0}, {6, 0}}, {6});
+  r.run(K::Rail, {{6, 0}, {6, 10.0 / 3.0}, {20.0 / 3.0, 20.0 / 3.0}}, {3, 3});
+  r.run(K::Boundary, {{20.0 / 3.0, 20.0 / 3.0}, {20.0 / 3.0, 23.0 / 3.0}}, {1});
+  r.run(K::Rail, {{20.0 / 3.0, 23.0 / 3.0}, {-20.0 / 3.0, 23.0 / 3.0}}, {14});
+  r.run(K::Boundary, {{-20.0 / 3.0, 23.0 / 3.0}, {-20.0 / 3.0, 20.0 / 3.0}}, {1});
+  r.run(K::Rail, {{-20.0 / 3.0, 20.0 / 3.0}, {0, 20.0 / 3.0}, {0, 0}}, {7, 7});
+  FaceInput& f = r.f;
+  const auto n = static_cast<std::uint32_t>(f.cycle.size());
+  f.sides[1].joints = {3};
+  f.free_nodes.assign(n, false);
+  for (std::uint32_t k = 7; k < 30; ++k) f.free_nodes[k] = true;
+  const FaceMesh original = fill_face(f, "the L");
+  check_fill(f, original);
+  for (const bool mirror : {false, true})
+    for (const std::uint32_t shift : {0u, 5u, 23u}) {
+      CAPTURE(mirror, shift);
+      const FaceInput g = moved_face(f, shift, mirror, 2.1, 1e-3, {1e3, -7.0});
+      const std::optional<FaceMotion> m = face_motion(f, g);
+      REQUIRE(m);
+      CHECK(m->mirrored == mirror);
+      for (std::uint32_t k = 0; k < n; ++k)
+        CHECK(m->node[k] == (mirror ? (shift + n - k) % n : (shift + k) % n));
+      const FaceMesh moved = moved_fill(original, g, *m);
+      check_fill(g, moved);
+      CHECK(moved.min_jacobian == Approx(original.min_jacobian).margin(1e-9));
+      CHECK(moved.quads.size() == original.quads.size());
+      // Not the same face.
+      FaceInput off = g;
+      off.cycle[11] = off.cycle[11] + 1e-4 * (off.cycle[12] - off.cycle[11]);
+      CHECK_FALSE(face_motion(f, off));
+      FaceInput other_kind = g;
+      other_kind.sides[2].kind = other_kind.sides[2].kind == K::Rail ? K::Boundary : K::Rail;
+      CHECK_FALSE(face_motion(f, other_kind));
+      FaceInput other_joint = g;
+      for (FaceSide& side : other_joint.sides)
+        if (!side.joints.empty()) side.joints = {side.joints[0] + 1};
+      CHECK_FALSE(face_motion(f, other_joint));
+      FaceInput other_free = g;
+      other_free.free_nodes[3] = !other_free.free_nodes[3];
+      CHECK_FALSE(face_motion(f, other_free));
+    }
 }
 
 TEST_CASE("a large face no structured template fits gets quads of its edge size on a lattice",

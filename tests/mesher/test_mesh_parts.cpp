@@ -800,6 +800,20 @@ TEST_CASE("a round hole's rails spread over it far below the size the part was m
   }
 }
 
+TEST_CASE("a part's repeated large faces are filled once and the copies take the quads, moved",
+          "[mesh][shared]") {
+  // cover_bosses is symmetric: four copies of a 46-node face beside the bosses and four of a
+  // 56-node one on the side edges, each 35-70 ms in the unstructured templates. The first of
+  // each kind is filled; the others (turned, mirrored) take its quads. Every pose shares the
+  // same faces and gives the same mesh size.
+  const std::vector<MeshPartResult> poses =
+      check_three_poses(read_brep_json(samples_dir() + "/cover_bosses.json"), 0.74);
+  for (const MeshPartResult& r : poses) {
+    CHECK(r.stats.shared_faces >= 6);
+    CHECK(r.stats.shared_faces == poses.front().stats.shared_faces);
+  }
+}
+
 TEST_CASE("rails crowding onto a small round hole are thinned to 0.65 h apart", "[mesh][round]") {
   // cover_bosses: four bosses' holes of radius 3.5 in 16 chords of 22.5 degrees, h = 2; the
   // axis beside them is wide enough that a chord end's fan would hold more than three rails,

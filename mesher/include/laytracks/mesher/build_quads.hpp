@@ -38,6 +38,8 @@ struct QuadStats {
   std::size_t faces = 0;  ///< faces of the patches cut by their rails
   /// Faces per template, in mesher_detail::FillKind order (kTemplateNames).
   std::array<std::size_t, kTemplateNames.size()> by_template{};
+  /// faces that took the quads of an earlier face of the same shape, moved (kSharedFaceNodes)
+  std::size_t shared_faces = 0;
   std::size_t narrow_fans = 0;     ///< rails dropped: under 10 degrees from another at a node
   std::size_t crowded_feet = 0;    ///< rails dropped: feet too close on a round hole
   std::size_t dangling_rails = 0;  ///< rail segments left out: their MA end met no other rail
