@@ -1515,18 +1515,24 @@ class QuadBuilder {
     // moved (kSharedFaceNodes): the first of its kind in job order is filled, in every pose.
     std::vector<std::size_t> source(jobs.size(), kNoSource);
     std::vector<std::optional<FaceMotion>> motion(jobs.size());
-    std::vector<std::size_t> originals;  // large faces filled from scratch
+    // Large faces filled from scratch, by face_shape_key: only those whose keys are within
+    // the tolerance are tried.
+    std::multimap<double, std::size_t> originals;
     for (std::size_t j = 0; j < jobs.size(); ++j) {
       const FaceInput& in = pending[jobs[j].first][jobs[j].second].in;
       if (in.cycle.size() < kSharedFaceNodes) continue;
-      for (std::size_t o : originals) {
-        motion[j] = face_motion(pending[jobs[o].first][jobs[o].second].in, in);
+      const double key = face_shape_key(in);
+      const double reach =
+          16.0 * kCongruentTolerance * key;  // a node off by the tolerance moves it by 8x at most
+      for (auto it = originals.lower_bound(key - reach);
+           it != originals.end() && it->first <= key + reach; ++it) {
+        motion[j] = face_motion(pending[jobs[it->second].first][jobs[it->second].second].in, in);
         if (motion[j]) {
-          source[j] = o;
+          source[j] = it->second;
           break;
         }
       }
-      if (!motion[j]) originals.push_back(j);
+      if (!motion[j]) originals.emplace(key, j);
     }
     const auto fill_jobs = [&](const std::vector<std::size_t>& which) {
       parallel_for(which.size(), [&](std::size_t w) {

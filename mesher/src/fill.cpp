@@ -2228,11 +2228,19 @@ std::optional<FaceMotion> face_motion(const FaceInput& from, const FaceInput& to
     to_centre = to_centre + inv_n * to.cycle[k];
     from_centre = from_centre + inv_n * from.cycle[k];
   }
+  // Only starts that put to's first side corner on one of from's (any start when it has none).
+  std::size_t k0 = 0;
+  while (k0 < n && !b.corner[k0]) ++k0;
+  const bool cornered = k0 < n;
+  if (!cornered) k0 = 0;
   FaceMotion m;
   m.node.resize(n);
   for (int mirrored = 0; mirrored < 2; ++mirrored)
-    for (std::size_t shift = 0; shift < n; ++shift) {
-      // to's node k is from's node shift + k, or shift - k (mirrored: the cycle runs back).
+    for (std::size_t i0 = 0; i0 < n; ++i0) {
+      if (cornered && !a.corner[i0]) continue;
+      // to's node k is from's node shift + k, or shift - k (mirrored: the cycle runs back);
+      // node k0 is from's i0.
+      const std::size_t shift = mirrored ? (i0 + k0) % n : (i0 + n - k0) % n;
       for (std::size_t k = 0; k < n; ++k)
         m.node[k] = static_cast<std::uint32_t>(mirrored ? (shift + n - k) % n : (shift + k) % n);
       bool same = true;
@@ -2265,6 +2273,19 @@ std::optional<FaceMotion> face_motion(const FaceInput& from, const FaceInput& to
       if (same) return m;
     }
   return std::nullopt;
+}
+
+double face_shape_key(const FaceInput& face) {
+  const std::size_t n = face.cycle.size();
+  if (n == 0) return 0.0;
+  Vec2 centre{0.0, 0.0};
+  for (const Vec2& p : face.cycle) centre = centre + (1.0 / static_cast<double>(n)) * p;
+  double spread = 0.0, perimeter = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    spread += dot(face.cycle[k] - centre, face.cycle[k] - centre);
+    perimeter += distance(face.cycle[k], face.cycle[(k + 1) % n]);
+  }
+  return perimeter > 0.0 ? spread / (perimeter * perimeter) : 0.0;
 }
 
 FaceMesh moved_fill(const FaceMesh& filled, const FaceInput& to, const FaceMotion& motion) {

@@ -149,6 +149,12 @@ struct FaceMotion {
 /// other way.
 std::optional<FaceMotion> face_motion(const FaceInput& from, const FaceInput& to);
 
+/// A number two faces of the same shape (turned, mirrored, scaled, shifted) share but for
+/// rounding: the nodes' mean squared distance from their centre over the squared perimeter
+/// (times n). Faces whose keys differ by more than kCongruentTolerance in ratio are not one
+/// moved onto the other.
+double face_shape_key(const FaceInput& face);
+
 /// `filled` (the quads of face `from`) moved onto face `to`: interior nodes by the motion,
 /// cycle nodes renamed, quads turned back counter-clockwise after a mirror, and scored on `to`.
 FaceMesh moved_fill(const FaceMesh& filled, const FaceInput& to, const FaceMotion& motion);
