@@ -39,6 +39,10 @@ namespace {
 /// of quads of a flipped pair are smoothed again, not the whole mesh: cgal_wiggly_03_cgal spent
 /// 0.05 s of its 0.37 s smoothing everything again for one flip.
 constexpr int kResmoothRings = 3;
+/// The slides for a taper are undone when the mesh's worst corner ends more than this below
+/// where the short-edge slides alone take it (a 45-degree corner moved in its last bits is
+/// the same corner).
+constexpr double kLateSlideSlack = 1e-3;
 
 class Clock {
  public:
@@ -143,32 +147,52 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
     r.before_smoothing = summarize(part, r.mesh);
     smooth_mesh(part, r.mesh, options.smooth);
     // Rail feet crowding an arc point or a vertex slid apart along the boundary, judged on
-    // the smoothed quads (counts do not change).
-    std::vector<std::uint32_t> slid;
-    r.stats.slid_nodes = slide_boundary_nodes(part, r.mesh, &slid);
-    // Smoothing moves the nodes the flips were judged on: flip again where that now helps,
-    // and smooth what changed.
-    std::vector<std::uint32_t> flipped;
-    const std::size_t again = flip_edges(part, r.mesh, &flipped);
-    r.stats.edge_flips += again;
-    if (again > 0 || !slid.empty()) {
-      // Only round what changed: the nodes within kResmoothRings rings of the flipped quads
-      // and of the slid nodes.
-      std::vector<bool> movable(r.mesh.nodes.size(), false);
-      for (std::uint32_t q : flipped)
-        for (std::uint32_t v : r.mesh.elements[q].nodes) movable[v] = true;
-      for (std::uint32_t v : slid) movable[v] = true;
-      for (int ring = 1; ring < kResmoothRings; ++ring) {
-        std::vector<bool> next = movable;
-        for (const MeshElement& e : r.mesh.elements) {
-          if (std::none_of(e.nodes.begin(), e.nodes.end(), [&](std::uint32_t v) { return movable[v]; }))
-            continue;
-          for (std::uint32_t v : e.nodes) next[v] = true;
+    // the smoothed quads (counts do not change); then the flips the smoothing made
+    // worthwhile, and the nodes round what changed smoothed again.
+    const auto late = [&](QuadMesh& mesh, bool tapered, std::size_t& slid_count,
+                          std::size_t& for_taper) {
+      std::vector<std::uint32_t> slid;
+      slid_count = slide_boundary_nodes(part, mesh, &slid, tapered, &for_taper);
+      std::vector<std::uint32_t> flipped;
+      const std::size_t again = flip_edges(part, mesh, &flipped);
+      if (again > 0 || !slid.empty()) {
+        // Only round what changed: the nodes within kResmoothRings rings of the flipped quads
+        // and of the slid nodes.
+        std::vector<bool> movable(mesh.nodes.size(), false);
+        for (std::uint32_t q : flipped)
+          for (std::uint32_t v : mesh.elements[q].nodes) movable[v] = true;
+        for (std::uint32_t v : slid) movable[v] = true;
+        for (int ring = 1; ring < kResmoothRings; ++ring) {
+          std::vector<bool> next = movable;
+          for (const MeshElement& e : mesh.elements) {
+            if (std::none_of(e.nodes.begin(), e.nodes.end(),
+                             [&](std::uint32_t v) { return movable[v]; }))
+              continue;
+            for (std::uint32_t v : e.nodes) next[v] = true;
+          }
+          movable = std::move(next);
         }
-        movable = std::move(next);
+        smooth_mesh(part, mesh, options.smooth, &movable);
       }
-      smooth_mesh(part, r.mesh, options.smooth, &movable);
+      return again;
+    };
+    // Feet beside tapered quads on straight edges slide too, unless the mesh's worst corner
+    // ends lower than with the short-edge slides alone (the flips and the smoothing round
+    // the slid nodes cascade: docs/mesher.md, "Sliding boundary nodes").
+    QuadMesh plain = r.mesh;
+    std::size_t slid = 0, for_taper = 0, plain_slid = 0, unused = 0;
+    std::size_t flips = late(r.mesh, true, slid, for_taper);
+    if (for_taper > 0) {
+      const std::size_t plain_flips = late(plain, false, plain_slid, unused);
+      if (worst_scaled_jacobian(part, r.mesh) <
+          worst_scaled_jacobian(part, plain) - kLateSlideSlack) {
+        r.mesh = std::move(plain);
+        slid = plain_slid;
+        flips = plain_flips;
+      }
     }
+    r.stats.slid_nodes = slid;
+    r.stats.edge_flips += flips;
     r.times.smooth = clock.lap();
   } else {
     r.stats.slid_nodes = slide_boundary_nodes(part, r.mesh);

@@ -1,11 +1,13 @@
 // Boundary nodes slid apart (docs/mesher.md, "Sliding boundary nodes"). A rail's foot may land
 // a hundredth of an element from an arc point or another foot (a hole's arc: 0.013 h on
 // plate_with_hole), or from a vertex of a polygonal outline: the quad on that piece has an
-// edge 70 times shorter than its others, taper 0.07, edge ratio 70. Such a foot slides along
-// its boundary (the line through its two boundary neighbours, or its arc) to where
-// the worst of its quads is best. After the smoothing (and then smoothed round, as the late
-// flips are): judged on the smoothed quads; nodes and quads are not added or removed, so
-// the counts are the re-fill's, the same in every pose.
+// edge 70 times shorter than its others, taper 0.07, edge ratio 70; or a foot on a straight
+// edge may sit where its quads are tapered (half an element from a bend of a narrow strip:
+// taper 0.65), which the smoothing, moving interior nodes only, cannot mend. Such a foot slides
+// along its boundary (the line through its two boundary neighbours, or its arc) to where the worst
+// of its quads is best. After the smoothing (and then smoothed round, as the late flips are):
+// judged on the smoothed quads; nodes and quads are not added or removed, so the counts are the
+// re-fill's, the same in every pose.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -33,6 +35,9 @@ constexpr double kSlideTinyLine = 0.05;
 /// Where it may go: this many positions, evenly along its boundary between its two neighbours
 /// (fractions 1/(n+1) .. n/(n+1) of the way).
 constexpr int kSlideSteps = 15;
+/// A node on a straight edge also slides when one of its quads has a taper of this or less
+/// (quality.md's bad taper): a rail's foot beside a bend of a narrow strip.
+constexpr double kSlideTaper = 0.8;
 /// A slide is kept when it raises the worst min(scaled Jacobian, taper) of the node's quads by
 /// this.
 constexpr double kSlideGain = 0.05;
@@ -46,7 +51,23 @@ constexpr double kSlideOnArc = 1e-7;
 
 }  // namespace
 
-std::size_t slide_boundary_nodes(const Part& part, QuadMesh& mesh, std::vector<std::uint32_t>* moved) {
+double worst_scaled_jacobian(const Part& part, const QuadMesh& mesh) {
+  double worst = std::numeric_limits<double>::infinity();
+  for (const MeshElement& e : mesh.elements) {
+    const Frame& frame = part.patches[e.patch.index()].frame;
+    std::array<Vec2, 4> p;
+    for (std::size_t i = 0; i < 4; ++i) p[i] = frame.to_2d(mesh.nodes[e.nodes[i]]);
+    worst = std::min(worst, min_scaled_jacobian(p[0], p[1], p[2], p[3]));
+  }
+  return worst;
+}
+
+std::size_t slide_boundary_nodes(const Part& part,
+                                 QuadMesh& mesh,
+                                 std::vector<std::uint32_t>* moved,
+                                 bool tapered_too,
+                                 std::size_t* for_taper) {
+  if (for_taper) *for_taper = 0;
   const std::vector<bool> pinned = pinned_nodes(mesh);
   const std::vector<bool> shared = shared_nodes(mesh);
   const std::vector<bool> vertex = vertex_nodes(part, mesh);
@@ -78,14 +99,22 @@ std::size_t slide_boundary_nodes(const Part& part, QuadMesh& mesh, std::vector<s
     const auto at2 = [&](std::uint32_t v) { return frame.to_2d(mesh.nodes[v]); };
     const Vec2 p1 = at2(ends[0]), pf = at2(f), p2 = at2(ends[1]);
     const double d1 = norm(pf - p1), d2 = norm(p2 - pf);
-    if (!(std::min(d1, d2) < kSlideTiny * std::max(d1, d2))) continue;
     // Its boundary: the line through its neighbours, or the part's arc through the three (the
     // positions it may take come from PartArc::at, as every arc node's does).
     const Vec2 u = pf - p1, w = p2 - pf;
     const bool straight = std::abs(cross(u, w)) <= kStraightBoundarySine * norm(u) * norm(w);
-    if (straight &&
-        (dot(u, w) <= 0.0 || !(std::min(d1, d2) < kSlideTinyLine * std::max(d1, d2))))
-      continue;
+    const bool tiny =
+        std::min(d1, d2) < (straight ? kSlideTinyLine : kSlideTiny) * std::max(d1, d2);
+    bool tapered = false;
+    if (tapered_too && straight && !tiny) {
+      for (std::uint32_t q : around[f]) {
+        std::array<Vec2, 4> p;
+        for (std::size_t i = 0; i < 4; ++i) p[i] = at2(mesh.elements[q].nodes[i]);
+        if (quad_taper(p[0], p[1], p[2], p[3]) <= kSlideTaper) tapered = true;
+      }
+    }
+    if (!tiny && !tapered) continue;
+    if (straight && dot(u, w) <= 0.0) continue;
     const Vec3 x1 = mesh.nodes[ends[0]], x2 = mesh.nodes[ends[1]];
     const PartArc* arc = nullptr;
     double u1 = 0.0, u2 = 0.0;
@@ -116,9 +145,11 @@ std::size_t slide_boundary_nodes(const Part& part, QuadMesh& mesh, std::vector<s
     // The worst min(scaled Jacobian, taper) of the node's quads with the node at `at`, and
     // their worst scaled Jacobian (in the patch frame, where every element runs
     // counter-clockwise).
-    const auto score = [&](Vec2 at, double& jacobian) {
+    // ... and how many of them have a taper of kSlideTaper or less.
+    const auto score = [&](Vec2 at, double& jacobian, int& tapered_quads) {
       double worst = std::numeric_limits<double>::infinity();
       jacobian = worst;
+      tapered_quads = 0;
       for (std::uint32_t q : around[f]) {
         std::array<Vec2, 4> p;
         for (std::size_t i = 0; i < 4; ++i) {
@@ -126,22 +157,29 @@ std::size_t slide_boundary_nodes(const Part& part, QuadMesh& mesh, std::vector<s
           p[i] = v == f ? at : at2(v);
         }
         const double j = min_scaled_jacobian(p[0], p[1], p[2], p[3]);
+        const double t = quad_taper(p[0], p[1], p[2], p[3]);
         jacobian = std::min(jacobian, j);
-        worst = std::min({worst, j, quad_taper(p[0], p[1], p[2], p[3])});
+        worst = std::min({worst, j, t});
+        if (t <= kSlideTaper) ++tapered_quads;
       }
       jacobian = settled(jacobian);
       return settled(worst);
     };
     double jacobian_now = 0.0;
-    const double now = score(pf, jacobian_now);
+    int tapered_now = 0;
+    const double now = score(pf, jacobian_now, tapered_now);
     double best = now;
     std::optional<Vec3> to;
     for (int k = 1; k <= kSlideSteps; ++k) {
       const Vec3 at = point(static_cast<double>(k) / (kSlideSteps + 1));
       double jacobian = 0.0;
-      const double s = score(frame.to_2d(at), jacobian);
-      // No worse a corner, or none below kSlideJacobianFloor.
-      if (s > best && jacobian >= std::min(jacobian_now, kSlideJacobianFloor)) {
+      int tapered_then = 0;
+      const double s = score(frame.to_2d(at), jacobian, tapered_then);
+      // A short edge's node: no worse a corner, or none below kSlideJacobianFloor. A node
+      // slid for a taper: no worse a corner, and fewer tapered quads.
+      const bool ok = tiny ? jacobian >= std::min(jacobian_now, kSlideJacobianFloor)
+                           : jacobian >= jacobian_now && tapered_then < tapered_now;
+      if (s > best && ok) {
         best = s;
         to = at;
       }
@@ -149,6 +187,7 @@ std::size_t slide_boundary_nodes(const Part& part, QuadMesh& mesh, std::vector<s
     if (!to || !(best >= now + kSlideGain)) continue;
     mesh.nodes[f] = *to;
     if (moved) moved->push_back(f);
+    if (for_taper && !tiny) ++*for_taper;
     ++slid;
   }
   return slid;

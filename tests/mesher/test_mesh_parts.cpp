@@ -497,6 +497,24 @@ TEST_CASE("a rail's foot beside a vertex of a polygonal outline slides along its
   }
 }
 
+TEST_CASE(
+    "a rail's foot beside a bend of a narrow strip slides along its edge until the bend's "
+    "quads are not tapered",
+    "[mesh][slide]") {
+  // cgal_WingChiu: a strip two elements wide bends by 45 degrees four times. The feet of the
+  // last rails before each bend sat half an element from the reflex corner: the quads between
+  // them and the mitre had sides of 0.5 and 1 element, taper 0.65 (17.6% of the quads at
+  // taper <= 0.8, the paper's Table III allows 10.4%). Sliding such a foot (kSlideTaper) to
+  // fewer tapered quads round it, the smoothing round it does the rest: 8.1%, worst corner
+  // the same (0.707).
+  for (const MeshPartResult& r :
+       check_three_poses(read_brep_json(cases_dir() + "/external/cgal_WingChiu.json"), 0.70)) {
+    CHECK(r.stats.slid_nodes > 0);
+    CHECK(r.quality.measures[2].bad_percent < 10.4);  // taper <= 0.8
+    CHECK(r.quality.measures[0].bad_percent == 0.0);  // skew >= 30
+  }
+}
+
 TEST_CASE("the face round a fillet's centre is cut along the axis", "[mesh][face]") {
   // A 20 x 10 plate with corner fillets of radius 3.5 at h = 1: round each fillet's centre the
   // face between the arc's fan and the next tracks has a corner of 270 degrees, which no plain

@@ -99,15 +99,23 @@ std::size_t merge_thin_rows(const Part& part, QuadMesh& mesh);
 std::size_t fold_corner_kites(const Part& part, QuadMesh& mesh);
 
 /// Boundary nodes slid apart (docs/mesher.md, "Sliding boundary nodes"), run after the
-/// smoothing (mesh_part then smooths round the nodes moved): a node of one patch's boundary (no B-Rep vertex, not shared) whose shorter
-/// boundary edge is below 0.2 x its longer one on an arc (0.05 x on a straight edge) moves
-/// along its boundary (the line, or the circle through it and its two boundary neighbours) to
-/// the one of 15 even positions between them where the worst min(scaled Jacobian, taper) of
-/// its quads is best, when that beats where it is by 0.05 and leaves their worst scaled
-/// Jacobian no lower, or at least 0.6. Nodes and quads are not added or removed. Returns how
-/// many nodes moved; `moved`, when given, receives them.
-std::size_t slide_boundary_nodes(const Part& part, QuadMesh& mesh,
-                                 std::vector<std::uint32_t>* moved = nullptr);
+/// smoothing (mesh_part then smooths round the nodes moved): a node of one patch's boundary
+/// (no B-Rep vertex, not shared) whose shorter boundary edge is below 0.2 x its longer one on
+/// an arc (0.05 x on a straight edge), or, when `tapered`, a node on a straight edge with a
+/// quad of taper 0.8 or less, moves along its boundary (the line, or the circle through it and
+/// its two boundary neighbours) to the one of 15 even positions between them where the worst
+/// min(scaled Jacobian, taper) of its quads is best, when that beats where it is by 0.05 and
+/// leaves their worst scaled Jacobian no lower (or, for a short edge, at least 0.6). Nodes and
+/// quads are not added or removed. Returns how many nodes moved; `moved`, when given,
+/// receives them; `for_taper`, when given, gets how many of them moved for a taper alone.
+std::size_t slide_boundary_nodes(const Part& part,
+                                 QuadMesh& mesh,
+                                 std::vector<std::uint32_t>* moved = nullptr,
+                                 bool tapered = false,
+                                 std::size_t* for_taper = nullptr);
+
+/// The smallest corner scaled Jacobian of the mesh's quads, each in its patch's frame.
+double worst_scaled_jacobian(const Part& part, const QuadMesh& mesh);
 
 /// Cavity re-fill (docs/mesher.md, "Cavity re-fill"), run after the flips and before the
 /// smoothing: round the worst quads below `below` of each patch (at most 32 + 1/50 of its
