@@ -176,7 +176,7 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
       }
       return again;
     };
-    // Feet beside tapered quads on straight edges slide too, unless the mesh's worst corner
+    // Feet beside tapered quads slide too, unless the mesh's worst corner
     // ends lower than with the short-edge slides alone (the flips and the smoothing round
     // the slid nodes cascade: docs/mesher.md, "Sliding boundary nodes").
     QuadMesh plain = r.mesh;

@@ -35,8 +35,8 @@ constexpr double kSlideTinyLine = 0.05;
 /// Where it may go: this many positions, evenly along its boundary between its two neighbours
 /// (fractions 1/(n+1) .. n/(n+1) of the way).
 constexpr int kSlideSteps = 15;
-/// A node on a straight edge also slides when one of its quads has a taper of this or less
-/// (quality.md's bad taper): a rail's foot beside a bend of a narrow strip.
+/// A node (on a line or an arc) also slides when one of its quads has a taper of this or less
+/// (quality.md's bad taper): a rail's foot beside a bend of a narrow strip, or round a hole.
 constexpr double kSlideTaper = 0.8;
 /// A slide is kept when it raises the worst min(scaled Jacobian, taper) of the node's quads by
 /// this.
@@ -106,7 +106,7 @@ std::size_t slide_boundary_nodes(const Part& part,
     const bool tiny =
         std::min(d1, d2) < (straight ? kSlideTinyLine : kSlideTiny) * std::max(d1, d2);
     bool tapered = false;
-    if (tapered_too && straight && !tiny) {
+    if (tapered_too && !tiny) {
       for (std::uint32_t q : around[f]) {
         std::array<Vec2, 4> p;
         for (std::size_t i = 0; i < 4; ++i) p[i] = at2(mesh.elements[q].nodes[i]);
