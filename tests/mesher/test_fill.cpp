@@ -424,30 +424,40 @@ TEST_CASE("a four-sided face whose two longer sides meet gets three grids round 
   }
 }
 
+namespace {
+
+/// The corner region between the tracks of cgal_hole (frame units / 0.03), turned by `turn`:
+/// a bottom of 6 edges, a right side of 6 bending, two one-edge caps, and rails of 14 edges,
+/// the lower one turning at a reflex corner.
+FaceInput l_face(double turn) {
+  FaceRuns r;
+  r.ex = {std::cos(turn), std::sin(turn)};
+  r.ey = {-std::sin(turn), std::cos(turn)};
+  using K = FaceSide::Kind;
+  r.run(K::Boundary, {{0, 0}, {6, 0}}, {6});
+  r.run(K::Rail, {{6, 0}, {6, 10.0 / 3.0}, {20.0 / 3.0, 20.0 / 3.0}}, {3, 3});
+  r.run(K::Boundary, {{20.0 / 3.0, 20.0 / 3.0}, {20.0 / 3.0, 23.0 / 3.0}}, {1});
+  r.run(K::Rail, {{20.0 / 3.0, 23.0 / 3.0}, {-20.0 / 3.0, 23.0 / 3.0}}, {14});
+  r.run(K::Boundary, {{-20.0 / 3.0, 23.0 / 3.0}, {-20.0 / 3.0, 20.0 / 3.0}}, {1});
+  r.run(K::Rail, {{-20.0 / 3.0, 20.0 / 3.0}, {0, 20.0 / 3.0}, {0, 0}}, {7, 7});
+  return r.f;
+}
+
+}  // namespace
+
 TEST_CASE("an L-shaped face is cut at its reflex corner into pieces that are grids",
           "[fill][reflex]") {
-  // The corner region between the tracks of cgal_hole (frame units / 0.03): a bottom of 6
-  // edges, a right side of 6 bending, two one-edge caps, and rails of 14 edges, the lower one
-  // turning at a reflex corner. The split template gave kites at 0.24; cut from the reflex
-  // corner, the upper piece is a grid and the lower one three grids.
+  // l_face: the split template gave kites at 0.24; cut from the reflex corner, the upper
+  // piece is a grid and the lower one three grids.
   for (const double turn : {0.0, 2.0}) {
     CAPTURE(turn);
-    FaceRuns r;
-    r.ex = {std::cos(turn), std::sin(turn)};
-    r.ey = {-std::sin(turn), std::cos(turn)};
-    using K = FaceSide::Kind;
-    r.run(K::Boundary, {{0, 0}, {6, 0}}, {6});
-    r.run(K::Rail, {{6, 0}, {6, 10.0 / 3.0}, {20.0 / 3.0, 20.0 / 3.0}}, {3, 3});
-    r.run(K::Boundary, {{20.0 / 3.0, 20.0 / 3.0}, {20.0 / 3.0, 23.0 / 3.0}}, {1});
-    r.run(K::Rail, {{20.0 / 3.0, 23.0 / 3.0}, {-20.0 / 3.0, 23.0 / 3.0}}, {14});
-    r.run(K::Boundary, {{-20.0 / 3.0, 23.0 / 3.0}, {-20.0 / 3.0, 20.0 / 3.0}}, {1});
-    r.run(K::Rail, {{-20.0 / 3.0, 20.0 / 3.0}, {0, 20.0 / 3.0}, {0, 0}}, {7, 7});
-    REQUIRE(r.f.cycle.size() == 42);
-    const FaceMesh m = fill_face(r.f, "the L");
+    const FaceInput f = l_face(turn);
+    REQUIRE(f.cycle.size() == 42);
+    const FaceMesh m = fill_face(f, "the L");
     CHECK(std::string(to_string(m.kind)) == "reflex");
-    check_fill(r.f, m);
+    check_fill(f, m);
     CHECK(m.min_jacobian > 0.55);
-    CHECK(tapered_quads(r.f, m) <= 4u);
+    CHECK(tapered_quads(f, m) <= 4u);
   }
 }
 
@@ -493,15 +503,8 @@ TEST_CASE("a face that is another one turned, mirrored, scaled and shifted takes
   // the copy from any start node, mirrored or not, and the moved quads must be valid quads of
   // the copy, as good as the original's; a copy with a node off by 1e-4 of an edge, or with a
   // side of the other kind, or a joint elsewhere, is another face.
-  FaceRuns r;
+  FaceInput f = l_face(0.0);
   using K = FaceSide::Kind;
-  r.run(K::Boundary, {{0, 0}, {6, 0}}, {6});
-  r.run(K::Rail, {{6, 0}, {6, 10.0 / 3.0}, {20.0 / 3.0, 20.0 / 3.0}}, {3, 3});
-  r.run(K::Boundary, {{20.0 / 3.0, 20.0 / 3.0}, {20.0 / 3.0, 23.0 / 3.0}}, {1});
-  r.run(K::Rail, {{20.0 / 3.0, 23.0 / 3.0}, {-20.0 / 3.0, 23.0 / 3.0}}, {14});
-  r.run(K::Boundary, {{-20.0 / 3.0, 23.0 / 3.0}, {-20.0 / 3.0, 20.0 / 3.0}}, {1});
-  r.run(K::Rail, {{-20.0 / 3.0, 20.0 / 3.0}, {0, 20.0 / 3.0}, {0, 0}}, {7, 7});
-  FaceInput& f = r.f;
   const auto n = static_cast<std::uint32_t>(f.cycle.size());
   f.sides[1].joints = {3};
   f.free_nodes.assign(n, false);
