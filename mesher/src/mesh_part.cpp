@@ -176,9 +176,9 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
       }
       return again;
     };
-    // Feet beside tapered quads slide too, unless the mesh's worst corner
-    // ends lower than with the short-edge slides alone (the flips and the smoothing round
-    // the slid nodes cascade: docs/mesher.md, "Sliding boundary nodes").
+    // Feet beside tapered quads slide too, unless the mesh's worst corner ends lower than with
+    // the short-edge slides alone (the flips and the smoothing round the slid nodes cascade:
+    // docs/mesher.md, "Sliding boundary nodes"). `plain` keeps the smoothed mesh for that.
     QuadMesh plain = r.mesh;
     std::size_t slid = 0, for_taper = 0, plain_slid = 0, unused = 0;
     std::size_t flips = late(r.mesh, true, slid, for_taper);

@@ -1,13 +1,13 @@
 // Boundary nodes slid apart (docs/mesher.md, "Sliding boundary nodes"). A rail's foot may land
 // a hundredth of an element from an arc point or another foot (a hole's arc: 0.013 h on
 // plate_with_hole), or from a vertex of a polygonal outline: the quad on that piece has an
-// edge 70 times shorter than its others, taper 0.07, edge ratio 70; or a foot on a straight
-// edge may sit where its quads are tapered (half an element from a bend of a narrow strip:
-// taper 0.65), which the smoothing, moving interior nodes only, cannot mend. Such a foot slides
-// along its boundary (the line through its two boundary neighbours, or its arc) to where the worst
-// of its quads is best. After the smoothing (and then smoothed round, as the late flips are):
-// judged on the smoothed quads; nodes and quads are not added or removed, so the counts are the
-// re-fill's, the same in every pose.
+// edge 70 times shorter than its others, taper 0.07, edge ratio 70; or a foot may sit where
+// its quads are tapered (half an element from a bend of a narrow strip: taper 0.65), which
+// the smoothing, moving interior nodes only, cannot mend. Such a foot slides along its
+// boundary (the line through its two boundary neighbours, or its arc) to where the worst of
+// its quads is best. After the smoothing (and then smoothed round, as the late flips are):
+// judged on the smoothed quads; nodes and quads are not added or removed, so the counts are
+// the re-fill's, the same in every pose.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -142,10 +142,9 @@ std::size_t slide_boundary_nodes(const Part& part,
     const auto point = [&](double t) {
       return straight ? x1 + t * (x2 - x1) : arc->at(u1 + (u2 - u1) * t);
     };
-    // The worst min(scaled Jacobian, taper) of the node's quads with the node at `at`, and
-    // their worst scaled Jacobian (in the patch frame, where every element runs
-    // counter-clockwise).
-    // ... and how many of them have a taper of kSlideTaper or less.
+    // The worst min(scaled Jacobian, taper) of the node's quads with the node at `at`, their
+    // worst scaled Jacobian (in the patch frame, where every element runs counter-clockwise),
+    // and how many of them have a taper of kSlideTaper or less.
     const auto score = [&](Vec2 at, double& jacobian, int& tapered_quads) {
       double worst = std::numeric_limits<double>::infinity();
       jacobian = worst;
