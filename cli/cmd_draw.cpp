@@ -87,10 +87,9 @@ int run_draw(const std::vector<std::string>& argv) {
     return kOk;
   }
   std::unique_ptr<TrackWidthLaw> law;
-  CutGraphOptions cg;
   // The corridors as the tracks and the mesh at this size see them (the round holes chosen),
   // with only the source rails laid.
-  cg = cut_graph_options(part, axes, options.mesh, law);
+  CutGraphOptions cg = cut_graph_options(part, axes, options.mesh, law);
   if (stage == "corridors") cg = CutGraphOptions{};
   const CutGraph graph = build_cut_graph(part, axes, cg);
   write_file_atomically(*out, [&](std::ostream& o) {

@@ -38,7 +38,6 @@ using namespace mesher_detail;
 namespace {
 
 constexpr std::uint32_t kNone = 0xffffffffu;
-constexpr std::size_t kNoSource = static_cast<std::size_t>(-1);
 /// A face given the moved quads of an earlier one keeps them when their worst corner is at
 /// most this below the source's (rounding in the motion; a larger loss means the shapes
 /// differ where the tolerance did not see it, and the face is filled anew).
@@ -1513,8 +1512,11 @@ class QuadBuilder {
     }
     // A large face that is an earlier one moved (turned, mirrored, scaled) takes its quads,
     // moved (kSharedFaceNodes): the first of its kind in job order is filled, in every pose.
-    std::vector<std::size_t> source(jobs.size(), kNoSource);
-    std::vector<std::optional<FaceMotion>> motion(jobs.size());
+    struct Copy {
+      std::size_t source;
+      FaceMotion motion;
+    };
+    std::vector<std::optional<Copy>> copy(jobs.size());
     // Large faces filled from scratch, by face_shape_key: only those whose keys are within
     // the tolerance are tried.
     std::multimap<double, std::size_t> originals;
@@ -1526,13 +1528,13 @@ class QuadBuilder {
           16.0 * kCongruentTolerance * key;  // a node off by the tolerance moves it by 8x at most
       for (auto it = originals.lower_bound(key - reach);
            it != originals.end() && it->first <= key + reach; ++it) {
-        motion[j] = face_motion(pending[jobs[it->second].first][jobs[it->second].second].in, in);
-        if (motion[j]) {
-          source[j] = it->second;
+        const auto [p, f] = jobs[it->second];
+        if (std::optional<FaceMotion> m = face_motion(pending[p][f].in, in)) {
+          copy[j] = Copy{it->second, std::move(*m)};
           break;
         }
       }
-      if (!motion[j]) originals.emplace(key, j);
+      if (!copy[j]) originals.emplace(key, j);
     }
     const auto fill_jobs = [&](const std::vector<std::size_t>& which) {
       parallel_for(which.size(), [&](std::size_t w) {
@@ -1542,15 +1544,15 @@ class QuadBuilder {
     };
     std::vector<std::size_t> first_pass;
     for (std::size_t j = 0; j < jobs.size(); ++j)
-      if (source[j] == kNoSource) first_pass.push_back(j);
+      if (!copy[j]) first_pass.push_back(j);
     fill_jobs(first_pass);
     // A moved copy must score as its source did (up to rounding), else it is filled anew.
     std::vector<std::size_t> second_pass;
     for (std::size_t j = 0; j < jobs.size(); ++j) {
-      if (source[j] == kNoSource) continue;
+      if (!copy[j]) continue;
       const auto [p, f] = jobs[j];
-      const FaceMesh& from = filled[jobs[source[j]].first][jobs[source[j]].second];
-      FaceMesh moved = moved_fill(from, pending[p][f].in, *motion[j]);
+      const FaceMesh& from = filled[jobs[copy[j]->source].first][jobs[copy[j]->source].second];
+      FaceMesh moved = moved_fill(from, pending[p][f].in, copy[j]->motion);
       if (from.min_jacobian >= kAcceptJacobian &&
           moved.min_jacobian >= from.min_jacobian - kSharedFaceSlack) {
         filled[p][f] = std::move(moved);

@@ -1,10 +1,13 @@
 #include "laytracks/mesher/mesh_part.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <limits>
 #include <memory>
 #include <sstream>
 
+#include "fill.hpp"
 #include "laytracks/brep/error.hpp"
 #include "laytracks/cutgraph/adaptive.hpp"
 #include "laytracks/cutgraph/cut_graph.hpp"
@@ -43,6 +46,18 @@ constexpr int kResmoothRings = 3;
 /// where the short-edge slides alone take it (a 45-degree corner moved in its last bits is
 /// the same corner).
 constexpr double kLateSlideSlack = 1e-3;
+
+/// The smallest corner scaled Jacobian of the mesh's quads, each in its patch's frame.
+double worst_scaled_jacobian(const Part& part, const QuadMesh& mesh) {
+  double worst = std::numeric_limits<double>::infinity();
+  for (const MeshElement& e : mesh.elements) {
+    const Frame& frame = part.patches[e.patch.index()].frame;
+    std::array<Vec2, 4> p;
+    for (std::size_t i = 0; i < 4; ++i) p[i] = frame.to_2d(mesh.nodes[e.nodes[i]]);
+    worst = std::min(worst, mesher_detail::min_scaled_jacobian(p[0], p[1], p[2], p[3]));
+  }
+  return worst;
+}
 
 class Clock {
  public:
@@ -149,13 +164,16 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
     // Rail feet crowding an arc point or a vertex slid apart along the boundary, judged on
     // the smoothed quads (counts do not change); then the flips the smoothing made
     // worthwhile, and the nodes round what changed smoothed again.
-    const auto late = [&](QuadMesh& mesh, bool tapered, std::size_t& slid_count,
-                          std::size_t& for_taper) {
+    struct Late {
+      std::size_t slid = 0, for_taper = 0, flips = 0;
+    };
+    const auto late = [&](QuadMesh& mesh, bool tapered) {
+      Late done;
       std::vector<std::uint32_t> slid;
-      slid_count = slide_boundary_nodes(part, mesh, &slid, tapered, &for_taper);
+      done.slid = slide_boundary_nodes(part, mesh, &slid, tapered, &done.for_taper);
       std::vector<std::uint32_t> flipped;
-      const std::size_t again = flip_edges(part, mesh, &flipped);
-      if (again > 0 || !slid.empty()) {
+      done.flips = flip_edges(part, mesh, &flipped);
+      if (done.flips > 0 || !slid.empty()) {
         // Only round what changed: the nodes within kResmoothRings rings of the flipped quads
         // and of the slid nodes.
         std::vector<bool> movable(mesh.nodes.size(), false);
@@ -174,25 +192,23 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
         }
         smooth_mesh(part, mesh, options.smooth, &movable);
       }
-      return again;
+      return done;
     };
     // Feet beside tapered quads slide too, unless the mesh's worst corner ends lower than with
     // the short-edge slides alone (the flips and the smoothing round the slid nodes cascade:
     // docs/mesher.md, "Sliding boundary nodes"). `plain` keeps the smoothed mesh for that.
     QuadMesh plain = r.mesh;
-    std::size_t slid = 0, for_taper = 0, plain_slid = 0, unused = 0;
-    std::size_t flips = late(r.mesh, true, slid, for_taper);
-    if (for_taper > 0) {
-      const std::size_t plain_flips = late(plain, false, plain_slid, unused);
+    Late done = late(r.mesh, true);
+    if (done.for_taper > 0) {
+      const Late plain_done = late(plain, false);
       if (worst_scaled_jacobian(part, r.mesh) <
           worst_scaled_jacobian(part, plain) - kLateSlideSlack) {
         r.mesh = std::move(plain);
-        slid = plain_slid;
-        flips = plain_flips;
+        done = plain_done;
       }
     }
-    r.stats.slid_nodes = slid;
-    r.stats.edge_flips += flips;
+    r.stats.slid_nodes = done.slid;
+    r.stats.edge_flips += done.flips;
     r.times.smooth = clock.lap();
   } else {
     r.stats.slid_nodes = slide_boundary_nodes(part, r.mesh);

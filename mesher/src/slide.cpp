@@ -51,17 +51,6 @@ constexpr double kSlideOnArc = 1e-7;
 
 }  // namespace
 
-double worst_scaled_jacobian(const Part& part, const QuadMesh& mesh) {
-  double worst = std::numeric_limits<double>::infinity();
-  for (const MeshElement& e : mesh.elements) {
-    const Frame& frame = part.patches[e.patch.index()].frame;
-    std::array<Vec2, 4> p;
-    for (std::size_t i = 0; i < 4; ++i) p[i] = frame.to_2d(mesh.nodes[e.nodes[i]]);
-    worst = std::min(worst, min_scaled_jacobian(p[0], p[1], p[2], p[3]));
-  }
-  return worst;
-}
-
 std::size_t slide_boundary_nodes(const Part& part,
                                  QuadMesh& mesh,
                                  std::vector<std::uint32_t>* moved,
@@ -105,15 +94,33 @@ std::size_t slide_boundary_nodes(const Part& part,
     const bool straight = std::abs(cross(u, w)) <= kStraightBoundarySine * norm(u) * norm(w);
     const bool tiny =
         std::min(d1, d2) < (straight ? kSlideTinyLine : kSlideTiny) * std::max(d1, d2);
-    bool tapered = false;
-    if (tapered_too && !tiny) {
+    if (!tiny && !tapered_too) continue;
+    // The worst min(scaled Jacobian, taper) of the node's quads with the node at `at`, their
+    // worst scaled Jacobian (in the patch frame, where every element runs counter-clockwise),
+    // and how many of them have a taper of kSlideTaper or less.
+    const auto score = [&](Vec2 at, double& jacobian, int& tapered_quads) {
+      double worst = std::numeric_limits<double>::infinity();
+      jacobian = worst;
+      tapered_quads = 0;
       for (std::uint32_t q : around[f]) {
         std::array<Vec2, 4> p;
-        for (std::size_t i = 0; i < 4; ++i) p[i] = at2(mesh.elements[q].nodes[i]);
-        if (quad_taper(p[0], p[1], p[2], p[3]) <= kSlideTaper) tapered = true;
+        for (std::size_t i = 0; i < 4; ++i) {
+          const std::uint32_t v = mesh.elements[q].nodes[i];
+          p[i] = v == f ? at : at2(v);
+        }
+        const double j = min_scaled_jacobian(p[0], p[1], p[2], p[3]);
+        const double t = quad_taper(p[0], p[1], p[2], p[3]);
+        jacobian = std::min(jacobian, j);
+        worst = std::min({worst, j, t});
+        if (t <= kSlideTaper) ++tapered_quads;
       }
-    }
-    if (!tiny && !tapered) continue;
+      jacobian = settled(jacobian);
+      return settled(worst);
+    };
+    double jacobian_now = 0.0;
+    int tapered_now = 0;
+    const double now = score(pf, jacobian_now, tapered_now);
+    if (!tiny && tapered_now == 0) continue;
     if (straight && dot(u, w) <= 0.0) continue;
     const Vec3 x1 = mesh.nodes[ends[0]], x2 = mesh.nodes[ends[1]];
     const PartArc* arc = nullptr;
@@ -142,31 +149,6 @@ std::size_t slide_boundary_nodes(const Part& part,
     const auto point = [&](double t) {
       return straight ? x1 + t * (x2 - x1) : arc->at(u1 + (u2 - u1) * t);
     };
-    // The worst min(scaled Jacobian, taper) of the node's quads with the node at `at`, their
-    // worst scaled Jacobian (in the patch frame, where every element runs counter-clockwise),
-    // and how many of them have a taper of kSlideTaper or less.
-    const auto score = [&](Vec2 at, double& jacobian, int& tapered_quads) {
-      double worst = std::numeric_limits<double>::infinity();
-      jacobian = worst;
-      tapered_quads = 0;
-      for (std::uint32_t q : around[f]) {
-        std::array<Vec2, 4> p;
-        for (std::size_t i = 0; i < 4; ++i) {
-          const std::uint32_t v = mesh.elements[q].nodes[i];
-          p[i] = v == f ? at : at2(v);
-        }
-        const double j = min_scaled_jacobian(p[0], p[1], p[2], p[3]);
-        const double t = quad_taper(p[0], p[1], p[2], p[3]);
-        jacobian = std::min(jacobian, j);
-        worst = std::min({worst, j, t});
-        if (t <= kSlideTaper) ++tapered_quads;
-      }
-      jacobian = settled(jacobian);
-      return settled(worst);
-    };
-    double jacobian_now = 0.0;
-    int tapered_now = 0;
-    const double now = score(pf, jacobian_now, tapered_now);
     double best = now;
     std::optional<Vec3> to;
     for (int k = 1; k <= kSlideSteps; ++k) {

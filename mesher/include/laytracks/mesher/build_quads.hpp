@@ -114,9 +114,6 @@ std::size_t slide_boundary_nodes(const Part& part,
                                  bool tapered = false,
                                  std::size_t* for_taper = nullptr);
 
-/// The smallest corner scaled Jacobian of the mesh's quads, each in its patch's frame.
-double worst_scaled_jacobian(const Part& part, const QuadMesh& mesh);
-
 /// Cavity re-fill (docs/mesher.md, "Cavity re-fill"), run after the flips and before the
 /// smoothing: round the worst quads below `below` of each patch (at most 32 + 1/50 of its
 /// quads a pass, two passes, the second near what the first changed), the quads across a
