@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "laytracks/brep/geometry.hpp"
@@ -19,5 +20,17 @@ namespace laytracks::mesher_detail {
 /// their order.
 std::vector<std::array<std::uint32_t, 3>> constrained_triangulation(const std::vector<Vec2>& pts,
                                                                     std::uint32_t loop);
+
+/// Delaunay refinement inside the simple counter-clockwise polygon `polygon` (match template,
+/// docs/mesher.md "Matched triangles"): the polygon's edges are never split; the circumcentre
+/// of an inside triangle whose circumradius exceeds kRefineRadius x size(centre) is added when
+/// it lies inside, at least kRefineClear x size from every polygon edge and from the points
+/// added before it in the same pass, until a pass adds none or `max_points` are added. Each
+/// pass takes its candidates largest first (radius over size, then position), so the result
+/// does not depend on CGAL's face order. Returns the added points (empty when the polygon has
+/// no triangulation).
+std::vector<Vec2> refinement_points(const std::vector<Vec2>& polygon,
+                                    const std::function<double(Vec2)>& size,
+                                    std::size_t max_points);
 
 }  // namespace laytracks::mesher_detail

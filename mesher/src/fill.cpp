@@ -10,15 +10,16 @@
 #include <optional>
 #include <sstream>
 
+#include "cdt.hpp"
 #include "laytracks/brep/error.hpp"
 #include "laytracks/mesher/build_quads.hpp"
 #include "laytracks/mesher/quality.hpp"
-#include "cdt.hpp"
+#include "match.hpp"
 #include "patch_quads.hpp"
 
 namespace laytracks::mesher_detail {
 
-static_assert(static_cast<std::size_t>(FillKind::Lattice) + 1 == kTemplateNames.size(),
+static_assert(static_cast<std::size_t>(FillKind::Match) + 1 == kTemplateNames.size(),
               "a name for every face template");
 
 const char* to_string(FillKind kind) { return kTemplateNames[static_cast<std::size_t>(kind)]; }
@@ -1226,6 +1227,92 @@ bool cut_down(Builder& m, const std::vector<std::uint32_t>& ids, int& budget) {
 /// one midpoint whose neighbour has three becomes a ring of five round its four nodes (the
 /// midpoint a flat corner, which the ring's two quads there split). It needs nothing of the
 /// face but a triangulation: the template of last resort.
+/// Two paired triangles whose quad has a corner below this with an inner node at it or at one
+/// of its two edges' ends become rings of five (quads_from_marks); above it the relaxation
+/// mends the corner, as the node moves (with kSmoothFloor there, as between face nodes, the
+/// match template's toothed test face got 0.21 and 810 quads against 0.41 and 693).
+constexpr double kInnerRingBelow = 0.01;
+
+/// Quads from a triangulation of a face (nodes: the builder's) and a set of its inner edges
+/// that gives every triangle one or three (`is_marked`): a triangle with three becomes three
+/// quads round its centre (and its edges' midpoints); two triangles sharing their one mark become
+/// one quad, or, when their union has a flat or reflex corner, each a ring of five round its
+/// corners and the edge's midpoint; a triangle with one mark whose neighbour has three becomes
+/// such a ring.
+template <class Marked>
+void quads_from_marks(Builder& m,
+                      const std::vector<std::array<std::uint32_t, 3>>& tris,
+                      Marked is_marked) {
+  using Edge = std::pair<std::uint32_t, std::uint32_t>;
+  std::map<Edge, std::vector<std::size_t>> sharing;  // marked diagonal -> its two triangles
+  std::vector<int> degree(tris.size(), 0);
+  for (std::size_t t = 0; t < tris.size(); ++t) {
+    const auto [i, k, j] = tris[t];
+    for (const Edge& e : {Edge{i, k}, Edge{k, j}, Edge{i, j}}) {
+      if (is_marked(e.first, e.second)) {
+        sharing[{std::min(e.first, e.second), std::max(e.first, e.second)}].push_back(t);
+        ++degree[t];
+      }
+    }
+  }
+  std::map<Edge, std::uint32_t> mids;
+  auto mid = [&](std::uint32_t a, std::uint32_t b) {
+    const Edge e{std::min(a, b), std::max(a, b)};
+    const auto it = mids.find(e);
+    if (it != mids.end()) return it->second;
+    const std::uint32_t id = m.add(lerp(m.pos(a), m.pos(b), 0.5));
+    mids.emplace(e, id);
+    return id;
+  };
+  for (std::size_t t = 0; t < tris.size(); ++t) {
+    const auto [i, k, j] = tris[t];
+    if (degree[t] == 3) {
+      const std::uint32_t ik = mid(i, k), kj = mid(k, j), ij = mid(i, j);
+      const Vec2 g =
+          (1.0 / 6.0) * (m.pos(i) + m.pos(k) + m.pos(j) + m.pos(ik) + m.pos(kj) + m.pos(ij));
+      const std::uint32_t c = m.add(g);
+      m.quad(i, ik, c, ij);
+      m.quad(k, kj, c, ik);
+      m.quad(j, ij, c, kj);
+      continue;
+    }
+    // One marked edge x -> y, counter-clockwise in the triangle i k j; z the third corner.
+    const std::array<std::uint32_t, 3> v{i, k, j};
+    std::size_t s = 0;
+    while (!is_marked(v[s], v[(s + 1) % 3])) ++s;
+    const std::uint32_t x = v[s], y = v[(s + 1) % 3], z = v[(s + 2) % 3];
+    const auto& pair = sharing[{std::min(x, y), std::max(x, y)}];
+    const std::size_t other = pair[0] == t ? pair[1] : pair[0];
+    if (degree[other] == 1) {
+      if (other < t) continue;  // emitted with the other one
+      std::uint32_t w = 0;
+      for (std::uint32_t u : tris[other])
+        if (u != x && u != y) w = u;
+      // A flat or reflex corner between face nodes only (a node on a straight side, or a
+      // reflex node) cannot be relaxed away, nor one about to fold: each triangle a ring of
+      // five round its corners and the shared midpoint. A poor corner that an inner node
+      // bounds (the match template's) is left to the relaxation.
+      const std::array<std::uint32_t, 4> q{y, z, x, w};
+      bool ring = false;
+      for (std::size_t c = 0; c < 4; ++c) {
+        const double corner =
+            corner_jacobian(m.pos(q[c]), m.pos(q[(c + 1) % 4]), m.pos(q[(c + 3) % 4]));
+        const bool fixed = q[c] < m.n() && q[(c + 1) % 4] < m.n() && q[(c + 3) % 4] < m.n();
+        ring = ring || corner < (fixed ? kSmoothFloor : kInnerRingBelow);
+      }
+      if (ring) {
+        const std::uint32_t c = mid(x, y);
+        ring_into(m, {y, z, x, c});
+        ring_into(m, {x, w, y, c});
+      } else {
+        m.quad(y, z, x, w);
+      }
+    } else {
+      ring_into(m, {y, z, x, mid(x, y)});
+    }
+  }
+}
+
 std::optional<FaceMesh> fill_pairs(const FaceInput& face) {
   const auto n = static_cast<std::uint32_t>(face.cycle.size());
   if (n < 4 || n % 2 != 0) return std::nullopt;
@@ -1255,65 +1342,45 @@ std::optional<FaceMesh> fill_pairs(const FaceInput& face) {
     const Edge e{std::min(a, b), std::max(a, b)};
     return diagonal(e.first, e.second) && marked[e];
   };
-  std::map<Edge, std::vector<std::size_t>> sharing;  // marked diagonal -> its two triangles
-  std::vector<int> degree(tris.size(), 0);
-  for (std::size_t t = 0; t < tris.size(); ++t) {
-    const auto [i, k, j] = tris[t];
-    for (const Edge& e : {Edge{i, k}, Edge{k, j}, Edge{i, j}}) {
-      if (is_marked(e.first, e.second)) {
-        sharing[e].push_back(t);
-        ++degree[t];
-      }
-    }
-  }
   Builder m(face, FillKind::Pairs);
-  std::map<Edge, std::uint32_t> mids;
-  auto mid = [&](std::uint32_t a, std::uint32_t b) {
-    const Edge e{std::min(a, b), std::max(a, b)};
-    const auto it = mids.find(e);
-    if (it != mids.end()) return it->second;
-    const std::uint32_t id = m.add(lerp(poly[a], poly[b], 0.5));
-    mids.emplace(e, id);
-    return id;
-  };
-  for (std::size_t t = 0; t < tris.size(); ++t) {
-    const auto [i, k, j] = tris[t];
-    if (degree[t] == 3) {
-      const std::uint32_t ik = mid(i, k), kj = mid(k, j), ij = mid(i, j);
-      const Vec2 g = (1.0 / 6.0) * (poly[i] + poly[k] + poly[j] + m.pos(ik) + m.pos(kj) + m.pos(ij));
-      const std::uint32_t c = m.add(g);
-      m.quad(i, ik, c, ij);
-      m.quad(k, kj, c, ik);
-      m.quad(j, ij, c, kj);
-      continue;
-    }
-    // One marked edge x -> y, counter-clockwise in the triangle i k j; z the third corner.
-    const std::array<std::uint32_t, 3> v{i, k, j};
-    std::size_t s = 0;
-    while (!is_marked(v[s], v[(s + 1) % 3])) ++s;
-    const std::uint32_t x = v[s], y = v[(s + 1) % 3], z = v[(s + 2) % 3];
-    const auto& pair = sharing[{std::min(x, y), std::max(x, y)}];
-    const std::size_t other = pair[0] == t ? pair[1] : pair[0];
-    if (degree[other] == 1) {
-      if (other < t) continue;  // emitted with the other one
-      std::uint32_t w = 0;
-      for (std::uint32_t u : tris[other])
-        if (u != x && u != y) w = u;
-      // A flat or reflex corner (a node on a straight side, or a reflex node) cannot be
-      // relaxed away: each triangle a ring of five round its corners and the shared midpoint.
-      if (min_scaled_jacobian(poly[y], poly[z], poly[x], poly[w]) < kSmoothFloor) {
-        const std::uint32_t c = mid(x, y);
-        ring_into(m, {y, z, x, c});
-        ring_into(m, {x, w, y, c});
-      } else {
-        m.quad(y, z, x, w);
-      }
-    } else {
-      ring_into(m, {y, z, x, mid(x, y)});
-    }
-  }
+  quads_from_marks(m, tris, is_marked);
   FaceMesh r = m.finish();
   relax(r, face, 60);
+  return r;
+}
+
+/// The match template (fill_match) competes with the other unstructured ones (match_ok) only
+/// with at most kMatchMoreQuads times the quads of the pick so far, and in a face of fewer than
+/// kMatchMinNodes nodes only with a worst corner of kMatchSmallFloor or more: in small faces
+/// the quads the later stages make of the other templates' are often better than the match's
+/// (cgal_Detmier 0.706 -> 0.396 with the acceptable 0.3, rounded_plate's fillets 0.765 ->
+/// 0.675 without a floor; docs/mesher.md, "Matched triangles").
+constexpr double kMatchMoreQuads = 1.25;
+constexpr std::size_t kMatchMinNodes = 24;
+constexpr double kMatchSmallFloor = 0.5;
+
+/// Match: the face triangulated with inner points graded from its edges, the triangles paired
+/// into quads (matched_triangles, quads_from_marks), in the face's LocalFrame so that every
+/// pose pairs alike.
+std::optional<FaceMesh> fill_match(const FaceInput& face) {
+  const auto n = static_cast<std::uint32_t>(face.cycle.size());
+  if (n < 4 || n % 2 != 0) return std::nullopt;
+  std::vector<std::uint32_t> ring(n);
+  for (std::uint32_t k = 0; k < n; ++k) ring[k] = k;
+  const LocalFrame frame(face.cycle, ring);
+  std::vector<Vec2> local(n);
+  for (std::uint32_t k = 0; k < n; ++k) local[k] = frame.to_local(face.cycle[k]);
+  const std::optional<MarkedTriangles> mt = matched_triangles(local);
+  if (!mt) return std::nullopt;
+  Builder m(face, FillKind::Match);
+  for (const Vec2& p : mt->inner) m.add(frame.to_patch(p));
+  const auto is_marked = [&](std::uint32_t a, std::uint32_t b) {
+    return std::binary_search(mt->marks.begin(), mt->marks.end(),
+                              std::make_pair(std::min(a, b), std::max(a, b)));
+  };
+  quads_from_marks(m, mt->triangles, is_marked);
+  FaceMesh r = m.finish();
+  relax(r, face, 30);
   return r;
 }
 
@@ -2059,6 +2126,21 @@ std::optional<FaceMesh> fill_reflex(const FaceInput& face, int depth) {
 /// adaptive, 16 meshes changed: worst corner higher on 5, lower on none).
 constexpr std::size_t kFanSplitMax = 24;
 
+/// Whether the match template's quads may compete (kMatchMinNodes, kMatchSmallFloor,
+/// kMatchMoreQuads): its worst corner no whole kChoiceStep below the best acceptable one so far,
+/// no more quads than allowed against the pick so far, and in a small face a worst corner of
+/// kMatchSmallFloor or more.
+bool match_ok(const FaceMesh& m,
+              const FaceInput& face,
+              const std::optional<FaceMesh>& pick,
+              double best_worst) {
+  const bool small = face.cycle.size() < kMatchMinNodes;
+  if (small && m.min_jacobian < kMatchSmallFloor) return false;
+  if (quantised(m.min_jacobian) < best_worst) return false;
+  return !pick || static_cast<double>(m.quads.size()) <=
+                      kMatchMoreQuads * static_cast<double>(pick->quads.size());
+}
+
 /// The unstructured templates (split and fan split from either parity, cut; fan split only
 /// when `fans`, and for faces of at most kFanSplitMax nodes); of those whose worst corner is acceptable, the one whose quads are best on
 /// average (mean_shape, in whole kShapeStep steps, the first on ties). `consider` sees every
@@ -2066,16 +2148,19 @@ constexpr std::size_t kFanSplitMax = 24;
 template <class Consider>
 std::optional<FaceMesh> pick_unstructured(const FaceInput& face, bool fans, int depth, Consider&& consider) {
   std::optional<FaceMesh> pick;
-  double pick_shape = 0.0;
-  for (int k = 0; k < 8; ++k) {
+  double pick_shape = 0.0, best_worst = -1e9;
+  for (int k = 0; k < 9; ++k) {
     if (!fans && (k == 2 || k == 3 || k >= 5)) continue;
     if ((k == 2 || k == 3) && face.cycle.size() > kFanSplitMax) continue;
     std::optional<FaceMesh> m = k < 2   ? fill_split(face, static_cast<std::uint32_t>(k))
                                 : k < 4 ? fill_fan_split(face, static_cast<std::uint32_t>(k - 2))
                                 : k < 5 ? fill_cut(face)
                                 : k < 6 ? fill_reflex(face, depth)
-                                        : fill_lattice(face, static_cast<std::uint32_t>(k - 6));
+                                : k < 8 ? fill_lattice(face, static_cast<std::uint32_t>(k - 6))
+                                        : fill_match(face);
+    if (k == 8 && m && !match_ok(*m, face, pick, best_worst)) continue;
     if (m && m->min_jacobian >= kAcceptJacobian) {
+      best_worst = std::max(best_worst, quantised(m->min_jacobian));
       const double shape = std::floor(mean_shape(*m, face) / kShapeStep);
       if (!pick || shape > pick_shape) {
         pick = *m;

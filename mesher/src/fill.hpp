@@ -51,6 +51,7 @@ enum class FillKind : std::uint8_t {
   Reflex,   ///< a face cut in two at a reflex corner, each piece filled by any template
   Three,    ///< four sides, the two longer ones meeting: three grids round one inner node
   Lattice,  ///< split with inner coarse nodes on a square lattice: quads of the face's edge size
+  Match,    ///< a graded triangulation inside, its triangles paired into quads
 };
 const char* to_string(FillKind kind);
 

@@ -591,6 +591,69 @@ TEST_CASE("a large face no structured template fits gets quads of its edge size 
   }
 }
 
+TEST_CASE("a large face with a toothed side gets matched triangles of graded size",
+          "[fill][match]") {
+  // A 30 x 20 face whose top side is a run of 30 teeth 0.8 deep and 1 wide (60 edges of
+  // 0.94) between rails of edge 1, 130 nodes: the kind of face left where rails fanning onto
+  // a ragged outline were dropped (cgal_wiggly_03_cgal). No structured template fits; split's
+  // coarse triangles span the face (worst corner 0.06), the lattice's from the teeth to its
+  // points are poor (0.28). Matched triangles graded from the edges: 0.41, quads of about
+  // the local edge size.
+  const double scale_of[] = {1.0, 1e-3, 1e3};
+  std::size_t first_count = 0;
+  for (const double turn : {0.0, 2.0}) {
+    for (const double mirror : {1.0, -1.0}) {
+      for (const double scale : scale_of) {
+        CAPTURE(turn, mirror, scale);
+        FaceRuns r;
+        r.ex = scale * Vec2{std::cos(turn), std::sin(turn)};
+        r.ey = scale * mirror * Vec2{-std::sin(turn), std::cos(turn)};
+        using K = FaceSide::Kind;
+        std::vector<Vec2> teeth;
+        for (int k = 0; k < 30; ++k) {
+          teeth.push_back({30.0 - k, 20.0});
+          teeth.push_back({29.5 - k, 19.2});
+        }
+        teeth.push_back({0.0, 20.0});
+        std::vector<std::pair<std::vector<Vec2>, std::vector<int>>> runs = {
+            {{{0, 0}, {30, 0}}, {30}},
+            {{{30, 0}, {30, 20}}, {20}},
+            {teeth, std::vector<int>(60, 1)},
+            {{{0, 20}, {0, 0}}, {20}}};
+        if (mirror < 0.0) {  // the same face seen from the other side: its cycle reversed
+          std::reverse(runs.begin(), runs.end());
+          for (auto& [corners, steps] : runs) std::reverse(corners.begin(), corners.end());
+        }
+        for (std::size_t k = 0; k < runs.size(); ++k)
+          r.run(k % 2 == 0 ? K::Rail : K::Boundary, runs[k].first, runs[k].second);
+        REQUIRE(r.f.cycle.size() == 130);
+        const FaceMesh m = fill_face(r.f, "the toothed face");
+        CHECK(std::string(to_string(m.kind)) == "match");
+        check_fill(r.f, m);
+        CHECK(m.min_jacobian > 0.38);
+        // Every quad edge shorter than two rail edges, none shorter than a fifth of a tooth's.
+        const auto n = static_cast<std::uint32_t>(r.f.cycle.size());
+        auto pos = [&](std::uint32_t i) { return i < n ? r.f.cycle[i] : m.interior[i - n]; };
+        double longest = 0.0, shortest = 1e300;
+        for (const auto& q : m.quads)
+          for (std::size_t k = 0; k < 4; ++k) {
+            const double l = distance(pos(q[k]), pos(q[(k + 1) % 4]));
+            longest = std::max(longest, l);
+            shortest = std::min(shortest, l);
+          }
+        CHECK(longest < 2.0 * scale);
+        CHECK(shortest > 0.19 * scale);
+        // The same quads in every pose the local frame sees alike (turned, scaled, shifted);
+        // the cycle reversed and started elsewhere gives another triangulation of the face.
+        if (mirror > 0.0) {
+          if (first_count == 0) first_count = m.quads.size();
+          CHECK(m.quads.size() == first_count);
+        }
+      }
+    }
+  }
+}
+
 TEST_CASE("a large patch's sweeps run in blocks that read nothing another writes, on any "
           "number of threads alike",
           "[fill][smooth][determinism]") {
