@@ -68,15 +68,20 @@ std::vector<std::array<std::uint32_t, 3>> constrained_triangulation(const std::v
     std::sort(tris.begin(), tris.end());
     // Every polygon edge in exactly one inside triangle, running the polygon's way; every
     // inner point used.
-    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edge;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+    edges.reserve(3 * tris.size());
     std::vector<bool> used(pts.size(), false);
     for (const auto& t : tris)
       for (std::size_t k = 0; k < 3; ++k) {
-        ++edge[{t[k], t[(k + 1) % 3]}];
+        edges.push_back({t[k], t[(k + 1) % 3]});
         used[t[k]] = true;
       }
-    for (std::uint32_t i = 0; i < loop; ++i)
-      if (edge[{i, (i + 1) % loop}] != 1) return {};
+    std::sort(edges.begin(), edges.end());
+    for (std::uint32_t i = 0; i < loop; ++i) {
+      const std::pair<std::uint32_t, std::uint32_t> e{i, (i + 1) % loop};
+      const auto range = std::equal_range(edges.begin(), edges.end(), e);
+      if (range.second - range.first != 1) return {};
+    }
     if (!std::all_of(used.begin(), used.end(), [](bool u) { return u; })) return {};
     if (tris.size() != 2 * pts.size() - loop - 2) return {};
     return tris;
@@ -96,11 +101,12 @@ constexpr double kRefineClear = 0.55;
 /// At most this many passes.
 constexpr int kRefinePasses = 40;
 
-double segment_distance(Vec2 p, Vec2 a, Vec2 b) {
+double squared_segment_distance(Vec2 p, Vec2 a, Vec2 b) {
   const Vec2 d = b - a;
   const double dd = dot(d, d);
   const double t = dd > 0.0 ? std::clamp(dot(p - a, d) / dd, 0.0, 1.0) : 0.0;
-  return norm(p - (a + t * d));
+  const Vec2 q = p - (a + t * d);
+  return dot(q, q);
 }
 
 }  // namespace
@@ -149,12 +155,14 @@ std::vector<Vec2> refinement_points(const std::vector<Vec2>& polygon,
       std::vector<Vec2> taken;
       for (const Candidate& cand : candidates) {
         if (added.size() + taken.size() >= max_points) break;
-        const double clear = kRefineClear * cand.size;
+        const double clear = kRefineClear * cand.size, clear2 = clear * clear;
         bool ok = true;
         for (std::size_t i = 0; i < loop && ok; ++i)
-          ok = segment_distance(cand.c, polygon[i], polygon[(i + 1) % loop]) >= clear;
-        for (const Vec2& t : taken)
-          if (ok) ok = norm(t - cand.c) >= clear;
+          ok = squared_segment_distance(cand.c, polygon[i], polygon[(i + 1) % loop]) >= clear2;
+        for (std::size_t i = 0; i < taken.size() && ok; ++i) {
+          const Vec2 d = taken[i] - cand.c;
+          ok = dot(d, d) >= clear2;
+        }
         if (!ok) continue;
         const Cdt::Face_handle f = cdt.locate(K::Point_2(cand.c.x, cand.c.y));
         if (f == nullptr || cdt.is_infinite(f) || f->info() != 1) continue;

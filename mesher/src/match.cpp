@@ -183,7 +183,10 @@ std::optional<Matching> match_with(const std::vector<Vec2>& polygon, double grad
   for (std::uint32_t i = 0; i < n; ++i) own[i] = 0.5 * (edge[(i + n - 1) % n] + edge[i]);
   const auto size = [&](Vec2 p) {
     double s = longest;
-    for (std::uint32_t i = 0; i < n; ++i) s = std::min(s, own[i] + grading * norm(p - polygon[i]));
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const Vec2 d = p - polygon[i];
+      s = std::min(s, own[i] + grading * std::sqrt(dot(d, d)));
+    }
     return s;
   };
   Matching r;
