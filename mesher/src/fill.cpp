@@ -1217,16 +1217,6 @@ bool cut_down(Builder& m, const std::vector<std::uint32_t>& ids, int& budget) {
   return false;
 }
 
-/// Triangle pairs: the face triangulated (all its nodes, the worst triangle as good as it can
-/// be), then each triangle given an odd number of its diagonals' midpoints (the one set of
-/// diagonals that makes every triangle's degree in the dual tree odd; it exists because the
-/// tree has n - 2 nodes, an even number). A triangle with three midpoints becomes three quads
-/// round its centre; two triangles that share their one marked diagonal become one quad (the
-/// midpoint dropped; when that quad would have a flat or reflex corner, each triangle becomes a
-/// ring of five round its corners and the midpoint); a triangle with
-/// one midpoint whose neighbour has three becomes a ring of five round its four nodes (the
-/// midpoint a flat corner, which the ring's two quads there split). It needs nothing of the
-/// face but a triangulation: the template of last resort.
 /// Two paired triangles whose quad has a corner below this with an inner node at it or at one
 /// of its two edges' ends become rings of five (quads_from_marks); above it the relaxation
 /// mends the corner, as the node moves (with kSmoothFloor there, as between face nodes, the
@@ -1313,6 +1303,16 @@ void quads_from_marks(Builder& m,
   }
 }
 
+/// Triangle pairs: the face triangulated (all its nodes, the worst triangle as good as it can
+/// be), then each triangle given an odd number of its diagonals' midpoints (the one set of
+/// diagonals that makes every triangle's degree in the dual tree odd; it exists because the
+/// tree has n - 2 nodes, an even number). A triangle with three midpoints becomes three quads
+/// round its centre; two triangles that share their one marked diagonal become one quad (the
+/// midpoint dropped; when that quad would have a flat or reflex corner, each triangle becomes a
+/// ring of five round its corners and the midpoint); a triangle with
+/// one midpoint whose neighbour has three becomes a ring of five round its four nodes (the
+/// midpoint a flat corner, which the ring's two quads there split). It needs nothing of the
+/// face but a triangulation: the template of last resort. The quads: quads_from_marks.
 std::optional<FaceMesh> fill_pairs(const FaceInput& face) {
   const auto n = static_cast<std::uint32_t>(face.cycle.size());
   if (n < 4 || n % 2 != 0) return std::nullopt;
@@ -2141,10 +2141,12 @@ bool match_ok(const FaceMesh& m,
                       kMatchMoreQuads * static_cast<double>(pick->quads.size());
 }
 
-/// The unstructured templates (split and fan split from either parity, cut; fan split only
-/// when `fans`, and for faces of at most kFanSplitMax nodes); of those whose worst corner is acceptable, the one whose quads are best on
-/// average (mean_shape, in whole kShapeStep steps, the first on ties). `consider` sees every
-/// result.
+/// The unstructured templates (split and fan split from either parity, cut; with `fans` (not
+/// in a cavity) also the reflex cut, the lattice split from either parity and the match,
+/// fan split only for faces of at most kFanSplitMax nodes); of those whose worst corner is
+/// acceptable, the one whose quads are best on average (mean_shape, in whole kShapeStep steps,
+/// the first on ties); the match only where match_ok allows. `consider` sees every result but
+/// a match that match_ok refuses.
 template <class Consider>
 std::optional<FaceMesh> pick_unstructured(const FaceInput& face, bool fans, int depth, Consider&& consider) {
   std::optional<FaceMesh> pick;
