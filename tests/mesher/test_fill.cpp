@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <optional>
 #include <random>
@@ -384,6 +385,51 @@ std::size_t tapered_quads(const FaceInput& f, const FaceMesh& m) {
   return tapered;
 }
 
+using Runs = std::vector<std::pair<std::vector<Vec2>, std::vector<int>>>;
+
+/// The face of `runs` (each its corners and the edges between them; sides alternate in kind,
+/// the first `first`) in twelve poses: turned by 0 or 2 radians, seen from either side (its
+/// cycle reversed), scaled by 1, 1e-3 or 1e3; `check(face, scale, mirrored)` for each.
+template <class Check>
+void in_every_pose(Runs runs, FaceSide::Kind first, Check check) {
+  const double scale_of[] = {1.0, 1e-3, 1e3};
+  for (const double turn : {0.0, 2.0}) {
+    for (const bool mirrored : {false, true}) {
+      for (const double scale : scale_of) {
+        CAPTURE(turn, mirrored, scale);
+        FaceRuns r;
+        const double side = mirrored ? -1.0 : 1.0;
+        r.ex = scale * Vec2{std::cos(turn), std::sin(turn)};
+        r.ey = scale * side * Vec2{-std::sin(turn), std::cos(turn)};
+        Runs posed = runs;
+        if (mirrored) {  // the same face seen from the other side: its cycle reversed
+          std::reverse(posed.begin(), posed.end());
+          for (auto& [corners, steps] : posed) std::reverse(corners.begin(), corners.end());
+        }
+        const FaceSide::Kind other =
+            first == FaceSide::Kind::Rail ? FaceSide::Kind::Boundary : FaceSide::Kind::Rail;
+        for (std::size_t k = 0; k < posed.size(); ++k)
+          r.run(k % 2 == 0 ? first : other, posed[k].first, posed[k].second);
+        check(r.f, scale, mirrored);
+      }
+    }
+  }
+}
+
+/// The shortest and the longest quad edge of a fill.
+std::pair<double, double> edge_range(const FaceInput& f, const FaceMesh& m) {
+  const auto n = static_cast<std::uint32_t>(f.cycle.size());
+  auto pos = [&](std::uint32_t i) { return i < n ? f.cycle[i] : m.interior[i - n]; };
+  double shortest = std::numeric_limits<double>::infinity(), longest = 0.0;
+  for (const auto& q : m.quads)
+    for (std::size_t k = 0; k < 4; ++k) {
+      const double l = distance(pos(q[k]), pos(q[(k + 1) % 4]));
+      shortest = std::min(shortest, l);
+      longest = std::max(longest, l);
+    }
+  return {shortest, longest};
+}
+
 }  // namespace
 
 TEST_CASE("a four-sided face whose two longer sides meet gets three grids round one node",
@@ -547,48 +593,26 @@ TEST_CASE("a large face no structured template fits gets quads of its edge size 
   // grid, no four corners. Split's coarse triangles span it: 73 quads up to 10.7 edges long,
   // 59 of them at taper <= 0.8, worst corner 0.15-0.22. The lattice template puts coarse nodes
   // inside: 261 quads at most 1.57 edges long, 21 tapered, worst 0.67, in every pose.
-  const double scale_of[] = {1.0, 1e-3, 1e3};
   std::size_t first_count = 0;
-  for (const double turn : {0.0, 2.0}) {
-    for (const double mirror : {1.0, -1.0}) {
-      for (const double scale : scale_of) {
-        CAPTURE(turn, mirror, scale);
-        FaceRuns r;
-        r.ex = scale * Vec2{std::cos(turn), std::sin(turn)};
-        r.ey = scale * mirror * Vec2{-std::sin(turn), std::cos(turn)};
-        using K = FaceSide::Kind;
-        std::vector<std::pair<std::vector<Vec2>, std::vector<int>>> runs = {
-            {{{0, 0}, {20, 0}}, {20}},
-            {{{20, 0}, {20, 12}}, {12}},
-            {{{20, 12}, {10, 18}}, {11}},
-            {{{10, 18}, {0, 12}}, {11}},
-            {{{0, 12}, {0, 0}}, {12}}};
-        if (mirror < 0.0) {  // the same face seen from the other side: its cycle reversed
-          std::reverse(runs.begin(), runs.end());
-          for (auto& [corners, steps] : runs) std::reverse(corners.begin(), corners.end());
-        }
-        for (std::size_t k = 0; k < runs.size(); ++k)
-          r.run(k % 2 == 0 ? K::Boundary : K::Rail, runs[k].first, runs[k].second);
-        REQUIRE(r.f.cycle.size() == 66);
-        const FaceMesh m = fill_face(r.f, "the pentagon");
-        CHECK(std::string(to_string(m.kind)) == "lattice");
-        check_fill(r.f, m);
-        CHECK(m.min_jacobian > 0.55);
-        // Every quad edge at most 2.5 boundary edges long (split's reach across the face).
-        const auto n = static_cast<std::uint32_t>(r.f.cycle.size());
-        auto pos = [&](std::uint32_t i) { return i < n ? r.f.cycle[i] : m.interior[i - n]; };
-        double longest = 0.0;
-        for (const auto& q : m.quads)
-          for (std::size_t k = 0; k < 4; ++k) longest = std::max(longest, distance(pos(q[k]), pos(q[(k + 1) % 4])));
-        CHECK(longest < 2.5 * scale);
-        INFO(tapered_quads(r.f, m) << " of " << m.quads.size() << " quads tapered");
-        CHECK(4 * tapered_quads(r.f, m) <= m.quads.size());
-        // The same quads in every pose.
-        if (first_count == 0) first_count = m.quads.size();
-        CHECK(m.quads.size() == first_count);
-      }
-    }
-  }
+  const Runs runs = {{{{0, 0}, {20, 0}}, {20}},
+                     {{{20, 0}, {20, 12}}, {12}},
+                     {{{20, 12}, {10, 18}}, {11}},
+                     {{{10, 18}, {0, 12}}, {11}},
+                     {{{0, 12}, {0, 0}}, {12}}};
+  in_every_pose(runs, FaceSide::Kind::Boundary, [&](const FaceInput& f, double scale, bool) {
+    REQUIRE(f.cycle.size() == 66);
+    const FaceMesh m = fill_face(f, "the pentagon");
+    CHECK(std::string(to_string(m.kind)) == "lattice");
+    check_fill(f, m);
+    CHECK(m.min_jacobian > 0.55);
+    // Every quad edge at most 2.5 boundary edges long (split's reach across the face).
+    CHECK(edge_range(f, m).second < 2.5 * scale);
+    INFO(tapered_quads(f, m) << " of " << m.quads.size() << " quads tapered");
+    CHECK(4 * tapered_quads(f, m) <= m.quads.size());
+    // The same quads in every pose.
+    if (first_count == 0) first_count = m.quads.size();
+    CHECK(m.quads.size() == first_count);
+  });
 }
 
 TEST_CASE("a large face with a toothed side gets matched triangles of graded size",
@@ -599,59 +623,34 @@ TEST_CASE("a large face with a toothed side gets matched triangles of graded siz
   // coarse triangles span the face (worst corner 0.06), the lattice's from the teeth to its
   // points are poor (0.28). Matched triangles graded from the edges: 0.41, quads of about
   // the local edge size.
-  const double scale_of[] = {1.0, 1e-3, 1e3};
-  std::size_t first_count = 0;
-  for (const double turn : {0.0, 2.0}) {
-    for (const double mirror : {1.0, -1.0}) {
-      for (const double scale : scale_of) {
-        CAPTURE(turn, mirror, scale);
-        FaceRuns r;
-        r.ex = scale * Vec2{std::cos(turn), std::sin(turn)};
-        r.ey = scale * mirror * Vec2{-std::sin(turn), std::cos(turn)};
-        using K = FaceSide::Kind;
-        std::vector<Vec2> teeth;
-        for (int k = 0; k < 30; ++k) {
-          teeth.push_back({30.0 - k, 20.0});
-          teeth.push_back({29.5 - k, 19.2});
-        }
-        teeth.push_back({0.0, 20.0});
-        std::vector<std::pair<std::vector<Vec2>, std::vector<int>>> runs = {
-            {{{0, 0}, {30, 0}}, {30}},
-            {{{30, 0}, {30, 20}}, {20}},
-            {teeth, std::vector<int>(60, 1)},
-            {{{0, 20}, {0, 0}}, {20}}};
-        if (mirror < 0.0) {  // the same face seen from the other side: its cycle reversed
-          std::reverse(runs.begin(), runs.end());
-          for (auto& [corners, steps] : runs) std::reverse(corners.begin(), corners.end());
-        }
-        for (std::size_t k = 0; k < runs.size(); ++k)
-          r.run(k % 2 == 0 ? K::Rail : K::Boundary, runs[k].first, runs[k].second);
-        REQUIRE(r.f.cycle.size() == 130);
-        const FaceMesh m = fill_face(r.f, "the toothed face");
-        CHECK(std::string(to_string(m.kind)) == "match");
-        check_fill(r.f, m);
-        CHECK(m.min_jacobian > 0.38);
-        // Every quad edge shorter than two rail edges, none shorter than a fifth of a tooth's.
-        const auto n = static_cast<std::uint32_t>(r.f.cycle.size());
-        auto pos = [&](std::uint32_t i) { return i < n ? r.f.cycle[i] : m.interior[i - n]; };
-        double longest = 0.0, shortest = 1e300;
-        for (const auto& q : m.quads)
-          for (std::size_t k = 0; k < 4; ++k) {
-            const double l = distance(pos(q[k]), pos(q[(k + 1) % 4]));
-            longest = std::max(longest, l);
-            shortest = std::min(shortest, l);
-          }
-        CHECK(longest < 2.0 * scale);
-        CHECK(shortest > 0.19 * scale);
-        // The same quads in every pose the local frame sees alike (turned, scaled, shifted);
-        // the cycle reversed and started elsewhere gives another triangulation of the face.
-        if (mirror > 0.0) {
-          if (first_count == 0) first_count = m.quads.size();
-          CHECK(m.quads.size() == first_count);
-        }
-      }
-    }
+  std::vector<Vec2> teeth;
+  for (int k = 0; k < 30; ++k) {
+    teeth.push_back({30.0 - k, 20.0});
+    teeth.push_back({29.5 - k, 19.2});
   }
+  teeth.push_back({0.0, 20.0});
+  const Runs runs = {{{{0, 0}, {30, 0}}, {30}},
+                     {{{30, 0}, {30, 20}}, {20}},
+                     {teeth, std::vector<int>(60, 1)},
+                     {{{0, 20}, {0, 0}}, {20}}};
+  std::size_t first_count = 0;
+  in_every_pose(runs, FaceSide::Kind::Rail, [&](const FaceInput& f, double scale, bool mirrored) {
+    REQUIRE(f.cycle.size() == 130);
+    const FaceMesh m = fill_face(f, "the toothed face");
+    CHECK(std::string(to_string(m.kind)) == "match");
+    check_fill(f, m);
+    CHECK(m.min_jacobian > 0.38);
+    // Every quad edge shorter than two rail edges, none shorter than a fifth of a tooth's.
+    const auto [shortest, longest] = edge_range(f, m);
+    CHECK(longest < 2.0 * scale);
+    CHECK(shortest > 0.19 * scale);
+    // The same quads in every pose the local frame sees alike (turned, scaled, shifted);
+    // the cycle reversed and started elsewhere gives another triangulation of the face.
+    if (!mirrored) {
+      if (first_count == 0) first_count = m.quads.size();
+      CHECK(m.quads.size() == first_count);
+    }
+  });
 }
 
 TEST_CASE("a large patch's sweeps run in blocks that read nothing another writes, on any "
