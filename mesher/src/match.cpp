@@ -181,12 +181,27 @@ std::optional<Matching> match_with(const std::vector<Vec2>& polygon, double grad
     longest = std::max(longest, edge[i]);
   }
   for (std::uint32_t i = 0; i < n; ++i) own[i] = 0.5 * (edge[(i + n - 1) % n] + edge[i]);
+  // The nodes by x: from the query's x outwards, a node farther in x than (s - the least
+  // own size) / grading cannot lower s.
+  std::vector<std::uint32_t> by_x(n);
+  for (std::uint32_t i = 0; i < n; ++i) by_x[i] = i;
+  std::sort(by_x.begin(), by_x.end(), [&](std::uint32_t i, std::uint32_t j) {
+    return polygon[i].x != polygon[j].x ? polygon[i].x < polygon[j].x : i < j;
+  });
+  const double least = *std::min_element(own.begin(), own.end());
   const auto size = [&](Vec2 p) {
     double s = longest;
-    for (std::uint32_t i = 0; i < n; ++i) {
+    const auto from = std::lower_bound(by_x.begin(), by_x.end(), p.x,
+                                       [&](std::uint32_t i, double x) { return polygon[i].x < x; });
+    const auto visit = [&](std::uint32_t i) {
       const Vec2 d = p - polygon[i];
       s = std::min(s, own[i] + grading * std::sqrt(dot(d, d)));
-    }
+    };
+    for (auto it = from; it != by_x.end() && least + grading * (polygon[*it].x - p.x) < s; ++it)
+      visit(*it);
+    for (auto it = from; it != by_x.begin() && least + grading * (p.x - polygon[*(it - 1)].x) < s;
+         --it)
+      visit(*(it - 1));
     return s;
   };
   Matching r;
