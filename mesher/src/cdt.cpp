@@ -37,6 +37,22 @@ void mark_inside(Cdt& cdt) {
     }
   }
 }
+/// Inserts every point of `pts` (its info its index) and the closed polygon pts[0 .. loop - 1]
+/// as constraints. False when two points are one vertex or a constraint runs through another
+/// vertex (the polygon touches itself): no such triangulation.
+bool insert_polygon(Cdt& cdt, const std::vector<Vec2>& pts, std::uint32_t loop) {
+  std::vector<Cdt::Vertex_handle> vh(pts.size());
+  for (std::uint32_t i = 0; i < pts.size(); ++i) {
+    vh[i] = cdt.insert(K::Point_2(pts[i].x, pts[i].y));
+    if (cdt.number_of_vertices() != i + 1) return false;
+    vh[i]->info() = i;
+  }
+  for (std::uint32_t i = 0; i < loop; ++i) cdt.insert_constraint(vh[i], vh[(i + 1) % loop]);
+  std::size_t constrained = 0;
+  for (auto e = cdt.finite_edges_begin(); e != cdt.finite_edges_end(); ++e)
+    if (cdt.is_constrained(*e)) ++constrained;
+  return constrained == loop;
+}
 }  // namespace
 
 std::vector<std::array<std::uint32_t, 3>> constrained_triangulation(const std::vector<Vec2>& pts,
@@ -44,19 +60,7 @@ std::vector<std::array<std::uint32_t, 3>> constrained_triangulation(const std::v
   if (loop < 3 || pts.size() < loop) return {};
   try {
     Cdt cdt;
-    std::vector<Cdt::Vertex_handle> vh(pts.size());
-    for (std::uint32_t i = 0; i < pts.size(); ++i) {
-      vh[i] = cdt.insert(K::Point_2(pts[i].x, pts[i].y));
-      // Two equal points are one vertex: no triangulation of these points.
-      if (cdt.number_of_vertices() != i + 1) return {};
-      vh[i]->info() = i;
-    }
-    for (std::uint32_t i = 0; i < loop; ++i) cdt.insert_constraint(vh[i], vh[(i + 1) % loop]);
-    // A constraint through another vertex is split there: the polygon touches itself.
-    std::size_t constrained = 0;
-    for (auto e = cdt.finite_edges_begin(); e != cdt.finite_edges_end(); ++e)
-      if (cdt.is_constrained(*e)) ++constrained;
-    if (constrained != loop) return {};
+    if (!insert_polygon(cdt, pts, loop)) return {};
     mark_inside(cdt);
     std::vector<std::array<std::uint32_t, 3>> tris;
     for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
@@ -119,16 +123,7 @@ std::vector<Vec2> refinement_points(const std::vector<Vec2>& polygon,
   std::vector<Vec2> added;
   try {
     Cdt cdt;
-    std::vector<Cdt::Vertex_handle> vh(loop);
-    for (std::size_t i = 0; i < loop; ++i) {
-      vh[i] = cdt.insert(K::Point_2(polygon[i].x, polygon[i].y));
-      if (cdt.number_of_vertices() != i + 1) return {};
-    }
-    for (std::size_t i = 0; i < loop; ++i) cdt.insert_constraint(vh[i], vh[(i + 1) % loop]);
-    std::size_t constrained = 0;
-    for (auto e = cdt.finite_edges_begin(); e != cdt.finite_edges_end(); ++e)
-      if (cdt.is_constrained(*e)) ++constrained;
-    if (constrained != loop) return {};
+    if (!insert_polygon(cdt, polygon, static_cast<std::uint32_t>(loop))) return {};
     for (int pass = 0; pass < kRefinePasses && added.size() < max_points; ++pass) {
       mark_inside(cdt);
       struct Candidate {

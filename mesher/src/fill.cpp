@@ -36,6 +36,13 @@ LocalFrame::LocalFrame(const std::vector<Vec2>& pos, const std::vector<std::uint
   if (!(scale_ > 0.0)) scale_ = 1.0;
 }
 
+LocalFrame::LocalFrame(const std::vector<Vec2>& cycle)
+    : LocalFrame(cycle, [&] {
+        std::vector<std::uint32_t> ids(cycle.size());
+        for (std::uint32_t k = 0; k < ids.size(); ++k) ids[k] = k;
+        return ids;
+      }()) {}
+
 Vec2 LocalFrame::to_local(Vec2 p) const {
   const Vec2 d = p - origin_;
   const Vec2 q{(d.x * ux_.x + d.y * ux_.y) / scale_, (d.y * ux_.x - d.x * ux_.y) / scale_};
@@ -879,9 +886,7 @@ std::optional<FaceMesh> fill_lattice(const FaceInput& face, std::uint32_t offset
   const auto n = static_cast<std::uint32_t>(face.cycle.size());
   if (n < 8 || n % 2 != 0) return std::nullopt;
   const std::uint32_t half = n / 2;
-  std::vector<std::uint32_t> ring(n);
-  for (std::uint32_t k = 0; k < n; ++k) ring[k] = k;
-  const LocalFrame frame(face.cycle, ring);
+  const LocalFrame frame(face.cycle);
   std::vector<Vec2> local;  // coarse nodes in the frame: the polygon, then the lattice points
   for (std::uint32_t k = 0; k < half; ++k) local.push_back(frame.to_local(face.cycle[(offset + 2 * k) % n]));
   double length = 0.0, c4 = 0.0, s4 = 0.0;
@@ -1365,9 +1370,7 @@ constexpr double kMatchSmallFloor = 0.5;
 std::optional<FaceMesh> fill_match(const FaceInput& face) {
   const auto n = static_cast<std::uint32_t>(face.cycle.size());
   if (n < 4 || n % 2 != 0) return std::nullopt;
-  std::vector<std::uint32_t> ring(n);
-  for (std::uint32_t k = 0; k < n; ++k) ring[k] = k;
-  const LocalFrame frame(face.cycle, ring);
+  const LocalFrame frame(face.cycle);
   std::vector<Vec2> local(n);
   for (std::uint32_t k = 0; k < n; ++k) local[k] = frame.to_local(face.cycle[k]);
   const std::optional<MarkedTriangles> mt = matched_triangles(local);

@@ -75,6 +75,8 @@ class LocalFrame {
  public:
   /// The frame of the closed polygon of `pos[ids[i]]` (at least two distinct points).
   LocalFrame(const std::vector<Vec2>& pos, const std::vector<std::uint32_t>& ids);
+  /// The frame of the closed polygon `cycle` itself.
+  explicit LocalFrame(const std::vector<Vec2>& cycle);
   /// p in this frame, rounded to the grid.
   Vec2 to_local(Vec2 p) const;
   /// Back to the patch frame.
