@@ -122,6 +122,7 @@ int run_mesh(const std::vector<std::string>& argv) {
     doc["corner_kites_folded"] = r.stats.corner_kites;
     doc["boundary_nodes_slid"] = r.stats.slid_nodes;
     doc["cavity_refills"] = r.stats.cavity_refills;
+    doc["regrids"] = r.stats.regrids;
     doc["loop_bridges"] = r.stats.loop_bridges;
     doc["disk_patches"] = r.stats.disk_patches;
     doc["spiral_closures"] = r.spiral_closures;

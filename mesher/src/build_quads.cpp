@@ -1545,6 +1545,13 @@ class QuadBuilder {
     std::vector<std::size_t> first_pass;
     for (std::size_t j = 0; j < jobs.size(); ++j)
       if (!copy[j]) first_pass.push_back(j);
+    // Largest faces first (their fills take longest), so that the threads end together; each
+    // fill goes to its own place, so the order changes no result.
+    const auto nodes_of = [&](std::size_t j) {
+      return pending[jobs[j].first][jobs[j].second].in.cycle.size();
+    };
+    std::stable_sort(first_pass.begin(), first_pass.end(),
+                     [&](std::size_t a, std::size_t b) { return nodes_of(a) > nodes_of(b); });
     fill_jobs(first_pass);
     // A moved copy must score as its source did (up to rounding), else it is filled anew.
     std::vector<std::size_t> second_pass;

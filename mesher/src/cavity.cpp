@@ -18,7 +18,9 @@
 
 #include "fill.hpp"
 #include "laytracks/mesher/build_quads.hpp"
+#include "laytracks/mesher/quality.hpp"
 #include "patch_quads.hpp"
+#include "regrid.hpp"
 
 namespace laytracks {
 
@@ -52,6 +54,19 @@ constexpr std::size_t kRefillParallelQuads = 500;
 constexpr std::uint32_t kNew = 0xffffffffu;
 /// Nodes of at least this many quads are poles: their star is a cavity of its own.
 constexpr std::size_t kPoleValence = 6;
+/// Regrid: rings of quads round an irregular node tried, and the most quads in a cavity.
+/// Regrid (regrid_plan): round an irregular node, its quads and then the quads at their nodes,
+/// out to kRegridRings rings of at most kRegridQuads quads, are its cavities (6 rings and 250
+/// quads: taper <= 0.8 a tenth lower on the sets for 10% more time, and more worst corners
+/// lower than higher); a fill's inner nodes are placed by kRegridSweeps harmonic sweeps before
+/// the relaxation.
+constexpr int kRegridRings = 4;
+constexpr std::size_t kRegridQuads = 120;
+constexpr int kRegridSweeps = 100;
+/// A regrid may change the cavity's quad count by at most this factor either way (star_5 at
+/// the uniform size: its centre's pole of 40 small quads became 20 large ones, the quads at
+/// the centre twice as large as the rest).
+constexpr double kRegridCountRatio = 1.5;
 
 class PatchRefill {
  public:
@@ -187,7 +202,8 @@ class PatchRefill {
                 const std::vector<Vec2>& inner_pos,
                 const std::vector<Quad>& cavity_quads,
                 const std::vector<std::uint32_t>& ring,
-                const LocalFrame& cf) const {
+                const LocalFrame& cf,
+                int sweeps = -1) const {
     Local l;
     l.ids = cycle;
     l.pos = cycle_pos;
@@ -223,7 +239,7 @@ class PatchRefill {
       l.quads.push_back(lq);
     }
     const std::vector<Vec2> start = l.pos;
-    final_sweeps(l.pos, fixed, l.quads, iterations_, kFinalEscapeTarget);
+    final_sweeps(l.pos, fixed, l.quads, sweeps < 0 ? iterations_ : sweeps, kFinalEscapeTarget);
     l.worst = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < l.quads.size(); ++k) {
       const Quad& q = l.quads[k];
@@ -267,6 +283,28 @@ class PatchRefill {
     return t;
   }
 
+  /// One regrid attempt round node v on the mesh as it is; reads: v and the nodes of the
+  /// quads at the nodes of the largest cavity looked at (its ring's nodes too).
+  Attempt regrid_attempt(std::uint32_t v) const {
+    Attempt t;
+    t.reads = {v};
+    if (around_[v].empty() || around_[v].size() == 4) return t;
+    std::vector<std::uint32_t> region = around_[v];
+    std::sort(region.begin(), region.end());
+    std::vector<std::uint32_t> looked;
+    for (int ring = 0; ring < kRegridRings && !t.plan; ++ring) {
+      if (ring > 0) region = quads_at_nodes_of(region);
+      if (region.size() > kRegridQuads) break;
+      looked = region;
+      t.plan = regrid_plan(region, t.log);
+    }
+    for (std::uint32_t q : quads_at_nodes_of(looked))
+      t.reads.insert(t.reads.end(), pq_.quads[q].begin(), pq_.quads[q].end());
+    std::sort(t.reads.begin(), t.reads.end());
+    t.reads.erase(std::unique(t.reads.begin(), t.reads.end()), t.reads.end());
+    return t;
+  }
+
   /// A pole: the node of q's worst corner when many quads meet there (kPoleValence), each
   /// corner there narrow (12 sectors of 30 degrees: 0.5 at best). No cavity round q alone
   /// takes that node out; the quads round it, alone and then with the quads at their nodes,
@@ -307,8 +345,10 @@ class PatchRefill {
     return nodes;
   }
 
-  /// A re-fill of the cavity, when it raises the worst quad of it and of the quads round it.
-  std::optional<Plan> plan_cavity(const std::vector<std::uint32_t>& cavity, std::string& log) const {
+  /// The boundary of a cavity as one simple cycle (counter-clockwise: the directed edges whose
+  /// reverse no cavity quad has), none when it is not one or longer than kMaxCavityNodes.
+  std::optional<std::vector<std::uint32_t>> cavity_cycle(
+      const std::vector<std::uint32_t>& cavity) const {
     // Its boundary: the directed edges whose reverse no cavity quad has, one cycle.
     std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
     for (std::uint32_t c : cavity)
@@ -333,7 +373,12 @@ class PatchRefill {
       cycle.push_back(v);
     }
     if (cycle.size() != border.size()) return std::nullopt;
-    // Its inner nodes go; none of them may be pinned.
+    return cycle;
+  }
+
+  /// The nodes of a cavity's quads not on its cycle, sorted; none when one is pinned.
+  std::optional<std::vector<std::uint32_t>> inner_nodes(
+      const std::vector<std::uint32_t>& cavity, const std::vector<std::uint32_t>& cycle) const {
     std::vector<std::uint32_t> on_cycle = cycle;
     std::sort(on_cycle.begin(), on_cycle.end());
     std::vector<std::uint32_t> inner;
@@ -344,13 +389,33 @@ class PatchRefill {
     inner.erase(std::unique(inner.begin(), inner.end()), inner.end());
     for (std::uint32_t v : inner)
       if (pq_.fixed[v]) return std::nullopt;
-    // The quads round it: alive, not in it, at a node of its boundary.
+    return inner;
+  }
+
+  /// The quads round a cavity: alive, not in it, at a node of its boundary; sorted.
+  std::vector<std::uint32_t> ring_of(const std::vector<std::uint32_t>& cavity,
+                                     const std::vector<std::uint32_t>& cycle) const {
     std::vector<std::uint32_t> ring;
     for (std::uint32_t v : cycle)
       for (std::uint32_t o : around_[v])
         if (!std::binary_search(cavity.begin(), cavity.end(), o)) ring.push_back(o);
     std::sort(ring.begin(), ring.end());
     ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+    return ring;
+  }
+
+  /// A re-fill of the cavity, when it raises the worst quad of it and of the quads round it.
+  std::optional<Plan> plan_cavity(const std::vector<std::uint32_t>& cavity,
+                                  std::string& log) const {
+    const std::optional<std::vector<std::uint32_t>> found = cavity_cycle(cavity);
+    if (!found) return std::nullopt;
+    const std::vector<std::uint32_t>& cycle = *found;
+    // Its inner nodes go; none of them may be pinned.
+    const std::optional<std::vector<std::uint32_t>> inner_found = inner_nodes(cavity, cycle);
+    if (!inner_found) return std::nullopt;
+    const std::vector<std::uint32_t>& inner = *inner_found;
+    // The quads round it: alive, not in it, at a node of its boundary.
+    const std::vector<std::uint32_t> ring = ring_of(cavity, cycle);
 
     FaceInput face;
     // The cavity is filled and relaxed in its own gridded frame (LocalFrame: its first node,
@@ -417,6 +482,134 @@ class PatchRefill {
     return Plan{cavity, cycle, face.cycle, cf, fm.interior.size(), fm.quads.size(), std::move(now)};
   }
 
+  /// The cavity filled with fewer irregular nodes (not in four quads) than it has inside:
+  /// a lattice fill where its boundary turns as a rectangle's does (no irregular node), a
+  /// fill round one centre where it turns as a triangle's or a pentagon's (one); each cycle
+  /// node keeps its count of the cavity's quads. Kept when, both relaxed with the quads round
+  /// the cavity, fewer of its quads are tapered (quality.md: taper <= 0.8) and the worst corner
+  /// is no lower (or at least the re-fill threshold).
+  std::optional<Plan> regrid_plan(const std::vector<std::uint32_t>& cavity,
+                                  std::string& log) const {
+    const std::optional<std::vector<std::uint32_t>> found = cavity_cycle(cavity);
+    if (!found) return std::nullopt;
+    const std::vector<std::uint32_t>& cycle = *found;
+    const std::size_t n = cycle.size();
+    const std::optional<std::vector<std::uint32_t>> inner_found = inner_nodes(cavity, cycle);
+    if (!inner_found || inner_found->empty()) return std::nullopt;
+    const std::vector<std::uint32_t>& inner = *inner_found;
+    const auto irregular = static_cast<std::size_t>(std::count_if(
+        inner.begin(), inner.end(), [&](std::uint32_t v) { return around_[v].size() != 4; }));
+    std::vector<int> turn(n);
+    int turning = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto count = std::count_if(
+          around_[cycle[i]].begin(), around_[cycle[i]].end(),
+          [&](std::uint32_t o) { return std::binary_search(cavity.begin(), cavity.end(), o); });
+      if (count < 1 || count > 3) return std::nullopt;
+      turn[i] = 2 - static_cast<int>(count);
+      turning += turn[i];
+    }
+    std::optional<TurnFill> fill;
+    if (turning == 4 && irregular >= 1)
+      fill = lattice_fill(turn);
+    else if ((turning == 3 || turning == 5) && irregular >= 2)
+      fill = sided_fill(turn);
+    if (!fill) return std::nullopt;
+    const double more =
+        static_cast<double>(fill->quads.size()) / static_cast<double>(cavity.size());
+    if (more > kRegridCountRatio || more * kRegridCountRatio < 1.0) return std::nullopt;
+    const LocalFrame cf(pq_.pos, cycle);
+    std::vector<Vec2> cyc;
+    for (std::uint32_t v : cycle) cyc.push_back(cf.to_local(pq_.pos[v]));
+    place_harmonic(*fill, cyc, kRegridSweeps);
+    // The old quads over the same local ids.
+    std::vector<Vec2> old_inner;
+    for (std::uint32_t v : inner) old_inner.push_back(cf.to_local(pq_.pos[v]));
+    const auto local_id = [&](std::uint32_t v) {
+      const auto at = std::find(cycle.begin(), cycle.end(), v);
+      return at != cycle.end()
+                 ? static_cast<std::uint32_t>(at - cycle.begin())
+                 : static_cast<std::uint32_t>(
+                       n + static_cast<std::size_t>(
+                               std::lower_bound(inner.begin(), inner.end(), v) - inner.begin()));
+    };
+    std::vector<Quad> old_quads;
+    for (std::uint32_t c : cavity) {
+      Quad lq{};
+      for (std::size_t k = 0; k < 4; ++k) lq[k] = local_id(pq_.quads[c][k]);
+      old_quads.push_back(lq);
+    }
+    const std::vector<std::uint32_t> ring = ring_of(cavity, cycle);
+    // Judged after kRefillSweeps sweeps whatever the smoothing asked for, so that the choice,
+    // and the element count, do not depend on it; the new quads keep those positions (also
+    // with --smooth 0: the harmonic positions alone may fold where the cavity is not convex).
+    const auto tapered = [](const Local& l, std::size_t count) {
+      std::size_t t = 0;
+      for (std::size_t q = 0; q < count; ++q) {
+        const Quad& x = l.quads[q];
+        if (quad_taper(l.pos[x[0]], l.pos[x[1]], l.pos[x[2]], l.pos[x[3]]) <=
+            QualityThresholds::kTaper)
+          ++t;
+      }
+      return t;
+    };
+    const Local was = relaxed(cyc, cycle, old_inner, old_quads, ring, cf, kRefillSweeps);
+    const std::size_t t_was = tapered(was, old_quads.size());
+    if (t_was == 0) return std::nullopt;  // nothing to gain
+    Local now = relaxed(cyc, cycle, fill->interior, fill->quads, ring, cf, kRefillSweeps);
+    const std::size_t t_now = tapered(now, fill->quads.size());
+    const bool keep = t_now < t_was && now.worst > kMinValidJacobian &&
+                      settled(now.worst) >= std::min(settled(was.worst), below_);
+    static const bool debug = std::getenv("LAYTRACKS_DEBUG_CAVITY") != nullptr;
+    if (debug) {
+      char line[200];
+      Vec2 mid{0.0, 0.0};
+      for (const Vec2& p : cyc) mid = mid + (1.0 / static_cast<double>(n)) * p;
+      mid = cf.to_patch(mid);
+      std::snprintf(line, sizeof line,
+                    "regrid: near (%g, %g) %zu quads, %zu irregular, turning %d -> %zu quads, "
+                    "tapered %zu -> %zu, "
+                    "worst %.3f -> %.3f%s\n",
+                    mid.x, mid.y, cavity.size(), irregular, turning, fill->quads.size(), t_was,
+                    t_now, was.worst, now.worst, keep ? " kept" : "");
+      log += line;
+    }
+    if (!keep) return std::nullopt;
+    return Plan{cavity, cycle, cyc, cf, fill->interior.size(), fill->quads.size(), std::move(now)};
+  }
+
+ public:
+  /// The regrid pass (regrid_plan): every irregular inner node (not in four quads) in node
+  /// order, in batches evaluated in parallel as run() does; the quads round it, then the quads
+  /// at their nodes, out to kRegridRings rings (at most kRegridQuads quads), are its cavities.
+  std::size_t regrid() {
+    std::vector<std::uint32_t> candidates;
+    for (std::uint32_t v = 0; v < pq_.pos.size(); ++v)
+      if (!pq_.fixed[v] && !around_[v].empty() && around_[v].size() != 4) candidates.push_back(v);
+    std::size_t kept = 0;
+    const std::size_t batch = parallel_ ? kRefillBatch : 1;
+    for (std::size_t first = 0; first < candidates.size(); first += batch) {
+      const std::size_t count = std::min(batch, candidates.size() - first);
+      std::vector<Attempt> tries(count);
+      parallel_for(count, [&](std::size_t i) { tries[i] = regrid_attempt(candidates[first + i]); });
+      ++batch_id_;
+      bool wrote = false;
+      for (std::size_t i = 0; i < count; ++i) {
+        Attempt& t = tries[i];
+        if (wrote && std::any_of(t.reads.begin(), t.reads.end(),
+                                 [&](std::uint32_t v) { return written_[v] == batch_id_; }))
+          t = regrid_attempt(candidates[first + i]);
+        if (!t.log.empty()) std::fputs(t.log.c_str(), stderr);
+        if (!t.plan) continue;
+        commit(*t.plan, kRefillPasses + 1);
+        wrote = true;
+        ++kept;
+      }
+    }
+    return kept;
+  }
+
+ private:
   /// Kept: the cavity's quads go, the new ones and their inner nodes come. Marks the nodes it
   /// changes (written_) for the attempts of the batch after it.
   void commit(Plan& plan, int pass) {
@@ -468,7 +661,8 @@ class PatchRefill {
 
 }  // namespace
 
-std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations, double below) {
+std::size_t refill_cavities(
+    const Part& part, QuadMesh& mesh, int iterations, double below, std::size_t* regrids) {
   const std::vector<bool> pinned = pinned_nodes(mesh);
   const std::vector<std::vector<std::uint32_t>> by_patch = elements_by_patch(part, mesh);
   // Each patch's re-fill reads its own quads and the pinned nodes, which no re-fill moves, so
@@ -476,7 +670,7 @@ std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations, do
   struct Result {
     PatchQuads pq;
     std::vector<bool> alive;
-    std::size_t kept = 0;
+    std::size_t kept = 0, regrids = 0;
   };
   std::vector<Result> results(part.patches.size());
   // With one patch to re-fill, its attempts run in parallel instead (a parallel_for within
@@ -496,16 +690,18 @@ std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations, do
       if (more == 0) break;
     }
     r.kept += refill.run(pass, true);
-    if (r.kept > 0) r.alive = refill.alive();
+    r.regrids = refill.regrid();
+    if (r.kept + r.regrids > 0) r.alive = refill.alive();
   });
-  std::size_t kept = 0;
+  std::size_t kept = 0, regridded = 0;
   std::vector<bool> drop(mesh.elements.size(), false);
   std::vector<MeshElement> added;
   for (std::size_t p = 0; p < part.patches.size(); ++p) {
     Result& r = results[p];
-    if (r.kept == 0) continue;
+    if (r.kept + r.regrids == 0) continue;
     PatchQuads& pq = r.pq;
     kept += r.kept;
+    regridded += r.regrids;
     const std::uint32_t shell = mesh.elements[pq.elements.front()].shell;
     const Frame& frame = part.patches[p].frame;
     for (std::size_t i = 0; i < pq.global.size(); ++i) {
@@ -526,7 +722,8 @@ std::size_t refill_cavities(const Part& part, QuadMesh& mesh, int iterations, do
       added.push_back(element_of(pq, pq.quads[q], p, shell));
     }
   }
-  if (kept == 0) return 0;
+  if (regrids) *regrids = regridded;
+  if (kept + regridded == 0) return 0;
   replace_elements(mesh, drop, added);
   return kept;
 }

@@ -154,8 +154,9 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
   // amplifies rounding), while the templates' nodes do not: the re-fills and so the counts
   // are the same in every pose.
   stage("refill");
-  r.stats.cavity_refills = refill_cavities(part, r.mesh, options.smooth,
-                                           r.adaptive ? kRefillBelowAdaptive : kRefillBelowUniform);
+  r.stats.cavity_refills =
+      refill_cavities(part, r.mesh, options.smooth,
+                      r.adaptive ? kRefillBelowAdaptive : kRefillBelowUniform, &r.stats.regrids);
   r.times.refill = clock.lap();
   if (options.smooth > 0) {
     stage("smooth");

@@ -55,6 +55,7 @@ struct QuadStats {
   std::size_t corner_kites = 0;     ///< kites folded by fold_corner_kites
   std::size_t slid_nodes = 0;       ///< boundary nodes moved by slide_boundary_nodes
   std::size_t cavity_refills = 0;   ///< cavities round bad quads filled again (refill_cavities)
+  std::size_t regrids = 0;          ///< cavities round irregular nodes gridded again (same)
   std::size_t loop_bridges = 0;     ///< loops no rail reached, joined by two bridge rails
   std::size_t disk_patches = 0;     ///< patches whose rails all met at one point: one face
 };
@@ -120,14 +121,20 @@ std::size_t slide_boundary_nodes(const Part& part,
 /// quad's edges, else those at its nodes, else those at their nodes, are taken out as one
 /// polygon, filled again by the face templates (fill_cavity) and relaxed with the quads round
 /// them (`iterations` sweeps, at most 4); the new quads are kept when their worst beats the
-/// worst of the old ones relaxed the same way by 0.02. Each cavity is posed in its own gridded
-/// frame (LocalFrame), so every pose of a part makes the same choices. Boundary and seam nodes
-/// stay; the cavity's boundary, hence conformity, is unchanged; nodes that no element uses any
-/// more are removed (node and element order otherwise kept). Returns the re-fills kept.
+/// worst of the old ones relaxed the same way by 0.02. Then the regrid pass (docs/mesher.md,
+/// "Regrid"): round each irregular interior node (not in four quads), rings of quads whose
+/// boundary turns as a rectangle's, a triangle's or a pentagon's are filled again by a grid
+/// with no irregular node inside, or one, kept when that leaves fewer tapered quads (taper <=
+/// 0.8) and a worst corner no lower (or at least `below`); `regrids`, when given, receives how
+/// many. Each cavity is posed in its own gridded frame (LocalFrame), so every pose of a part
+/// makes the same choices. Boundary and seam nodes stay; the cavity's boundary, hence
+/// conformity, is unchanged; nodes that no element uses any more are removed (node and
+/// element order otherwise kept). Returns the re-fills kept (the regrids not counted).
 std::size_t refill_cavities(const Part& part,
                             QuadMesh& mesh,
                             int iterations,
-                            double below = kRefillBelowUniform);
+                            double below = kRefillBelowUniform,
+                            std::size_t* regrids = nullptr);
 
 /// Smooths the interior nodes of every patch in its frame (docs/mesher.md, "Smoothing"):
 /// `iterations` Laplacian sweeps, as many of angle optimisation, then untangling sweeps over
