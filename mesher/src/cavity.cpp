@@ -283,6 +283,40 @@ class PatchRefill {
     return t;
   }
 
+  /// The region with every quad at its reflex nodes added (a free node that has three or
+  /// more of its quads in it but not all), again until it has none: a ring's jagged outline
+  /// made straighter, so that more rings turn as a rectangle's or a pentagon's do.
+  std::vector<std::uint32_t> closed_region(std::vector<std::uint32_t> region) const {
+    // Membership by stamp (this thread's scratch: attempts run in parallel).
+    thread_local std::vector<std::uint32_t> t_mark;
+    thread_local std::uint32_t t_stamp = 0;
+    if (t_mark.size() < pq_.quads.size()) t_mark.resize(pq_.quads.size(), 0);
+    if (++t_stamp == 0) {
+      std::fill(t_mark.begin(), t_mark.end(), 0);
+      t_stamp = 1;
+    }
+    for (std::uint32_t q : region) t_mark[q] = t_stamp;
+    for (std::size_t first = 0; first < region.size() && region.size() <= kRegridQuads;) {
+      const std::size_t end = region.size();
+      for (std::size_t i = 0; i < end; ++i)
+        for (std::uint32_t v : pq_.quads[region[i]]) {
+          if (pq_.fixed[v]) continue;
+          std::size_t in = 0;
+          for (std::uint32_t o : around_[v]) in += t_mark[o] == t_stamp ? 1u : 0u;
+          if (in < 3 || in == around_[v].size()) continue;
+          for (std::uint32_t o : around_[v])
+            if (t_mark[o] != t_stamp) {
+              t_mark[o] = t_stamp;
+              region.push_back(o);
+            }
+        }
+      if (region.size() == end) break;
+      first = end;
+    }
+    std::sort(region.begin(), region.end());
+    return region;
+  }
+
   /// One regrid attempt round node v on the mesh as it is; reads: v and the nodes of the
   /// quads at the nodes of the largest cavity looked at (its ring's nodes too).
   Attempt regrid_attempt(std::uint32_t v) const {
@@ -297,6 +331,11 @@ class PatchRefill {
       if (region.size() > kRegridQuads) break;
       looked = region;
       t.plan = regrid_plan(region, t.log);
+      if (t.plan) continue;
+      std::vector<std::uint32_t> closed = closed_region(region);
+      if (closed.size() == region.size() || closed.size() > kRegridQuads) continue;
+      looked = closed;
+      t.plan = regrid_plan(closed, t.log);
     }
     for (std::uint32_t q : quads_at_nodes_of(looked))
       t.reads.insert(t.reads.end(), pq_.quads[q].begin(), pq_.quads[q].end());
@@ -488,8 +527,50 @@ class PatchRefill {
   /// node keeps its count of the cavity's quads. Kept when, both relaxed with the quads round
   /// the cavity, fewer of its quads are tapered (quality.md: taper <= 0.8) and the worst corner
   /// is no lower (or at least the re-fill threshold).
+  /// Whether regrid_plan could fill the cavity, read from the counts alone (no cycle built):
+  /// its boundary nodes' quads in it turn by 4 round it with an irregular inner node, or by 3
+  /// or 5 with two and no reflex node; and a quad of it is tapered. Most rings fail here.
+  bool worth_regrid(const std::vector<std::uint32_t>& cavity) const {
+    thread_local std::vector<std::uint32_t> t_quad, t_node;
+    thread_local std::uint32_t t_stamp = 0;
+    if (t_quad.size() < pq_.quads.size()) t_quad.resize(pq_.quads.size(), 0);
+    if (t_node.size() < pq_.pos.size()) t_node.resize(pq_.pos.size(), 0);
+    if (++t_stamp == 0) {
+      std::fill(t_quad.begin(), t_quad.end(), 0);
+      std::fill(t_node.begin(), t_node.end(), 0);
+      t_stamp = 1;
+    }
+    for (std::uint32_t q : cavity) t_quad[q] = t_stamp;
+    int turning = 0;
+    std::size_t irregular = 0, reflex = 0;
+    for (std::uint32_t q : cavity)
+      for (std::uint32_t v : pq_.quads[q]) {
+        if (t_node[v] == t_stamp) continue;
+        t_node[v] = t_stamp;
+        std::size_t in = 0;
+        for (std::uint32_t o : around_[v]) in += t_quad[o] == t_stamp ? 1u : 0u;
+        if (in == around_[v].size() && !pq_.fixed[v]) {
+          irregular += in != 4 ? 1u : 0u;
+          continue;
+        }
+        if (in > 3) return false;
+        turning += 2 - static_cast<int>(in);
+        reflex += in == 3 ? 1u : 0u;
+      }
+    const bool lattice = turning == 4 && irregular >= 1;
+    const bool sided = (turning == 3 || turning == 5) && irregular >= 2 && reflex == 0;
+    if (!lattice && !sided) return false;
+    // A cavity with no tapered quad has nothing to gain (and most have none).
+    return std::any_of(cavity.begin(), cavity.end(), [&](std::uint32_t q) {
+      const Quad& x = pq_.quads[q];
+      return quad_taper(pq_.pos[x[0]], pq_.pos[x[1]], pq_.pos[x[2]], pq_.pos[x[3]]) <=
+             QualityThresholds::kTaper;
+    });
+  }
+
   std::optional<Plan> regrid_plan(const std::vector<std::uint32_t>& cavity,
                                   std::string& log) const {
+    if (!worth_regrid(cavity)) return std::nullopt;
     const std::optional<std::vector<std::uint32_t>> found = cavity_cycle(cavity);
     if (!found) return std::nullopt;
     const std::vector<std::uint32_t>& cycle = *found;

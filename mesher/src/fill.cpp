@@ -1098,10 +1098,13 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
     for (std::uint32_t gap = 2; gap + 2 <= n; ++gap) {
       const std::uint32_t j = (i + gap) % n;
       if (j < i) continue;  // each chord once
+      const double cap = std::min({0.5 * angle[i], 0.5 * angle[j], 0.5 * kPi}) * kDeg;
+      // No penalty is negative: a cap at or below the bar bounds every count (settled is
+      // monotone and the bar a settled value), and most chords end here.
+      if (cap <= bar()) continue;
       const Vec2 d = poly[j] - poly[i];
       const double len = norm(d);
       if (len <= 0.0) continue;
-      const double cap = std::min({0.5 * angle[i], 0.5 * angle[j], 0.5 * kPi}) * kDeg;
       const auto ideal = static_cast<std::int64_t>(std::floor(len / h + 0.5)) - 1;
       for (std::int64_t count = std::max<std::int64_t>(0, ideal - 1); count <= ideal + 1; ++count) {
         const auto in = static_cast<std::uint32_t>(count);
