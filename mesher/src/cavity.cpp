@@ -54,7 +54,6 @@ constexpr std::size_t kRefillParallelQuads = 500;
 constexpr std::uint32_t kNew = 0xffffffffu;
 /// Nodes of at least this many quads are poles: their star is a cavity of its own.
 constexpr std::size_t kPoleValence = 6;
-/// Regrid: rings of quads round an irregular node tried, and the most quads in a cavity.
 /// Regrid (regrid_plan): round an irregular node, its quads and then the quads at their nodes,
 /// out to kRegridRings rings of at most kRegridQuads quads, are its cavities (6 rings and 250
 /// quads: taper <= 0.8 a tenth lower on the sets for 10% more time, and more worst corners
@@ -296,7 +295,7 @@ class PatchRefill {
       t_stamp = 1;
     }
     for (std::uint32_t q : region) t_mark[q] = t_stamp;
-    for (std::size_t first = 0; first < region.size() && region.size() <= kRegridQuads;) {
+    for (;;) {
       const std::size_t end = region.size();
       for (std::size_t i = 0; i < end; ++i)
         for (std::uint32_t v : pq_.quads[region[i]]) {
@@ -310,8 +309,7 @@ class PatchRefill {
               region.push_back(o);
             }
         }
-      if (region.size() == end) break;
-      first = end;
+      if (region.size() == end || region.size() > kRegridQuads) break;
     }
     std::sort(region.begin(), region.end());
     return region;
@@ -521,12 +519,6 @@ class PatchRefill {
     return Plan{cavity, cycle, face.cycle, cf, fm.interior.size(), fm.quads.size(), std::move(now)};
   }
 
-  /// The cavity filled with fewer irregular nodes (not in four quads) than it has inside:
-  /// a lattice fill where its boundary turns as a rectangle's does (no irregular node), a
-  /// fill round one centre where it turns as a triangle's or a pentagon's (one); each cycle
-  /// node keeps its count of the cavity's quads. Kept when, both relaxed with the quads round
-  /// the cavity, fewer of its quads are tapered (quality.md: taper <= 0.8) and the worst corner
-  /// is no lower (or at least the re-fill threshold).
   /// Whether regrid_plan could fill the cavity, read from the counts alone (no cycle built):
   /// its boundary nodes' quads in it turn by 4 round it with an irregular inner node, or by 3
   /// or 5 with two and no reflex node; and a quad of it is tapered. Most rings fail here.
@@ -560,14 +552,23 @@ class PatchRefill {
     const bool lattice = turning == 4 && irregular >= 1;
     const bool sided = (turning == 3 || turning == 5) && irregular >= 2 && reflex == 0;
     if (!lattice && !sided) return false;
-    // A cavity with no tapered quad has nothing to gain (and most have none).
+    // A cavity with no tapered quad has nothing to gain (and most have none). Settled: a
+    // trapezoid of sides 2 and 3 (rows of a triangle's grid) has a taper of 0.8 exactly, and
+    // the pose's rounding must not decide.
     return std::any_of(cavity.begin(), cavity.end(), [&](std::uint32_t q) {
       const Quad& x = pq_.quads[q];
-      return quad_taper(pq_.pos[x[0]], pq_.pos[x[1]], pq_.pos[x[2]], pq_.pos[x[3]]) <=
-             QualityThresholds::kTaper;
+      return settled(quad_taper(pq_.pos[x[0]], pq_.pos[x[1]], pq_.pos[x[2]], pq_.pos[x[3]])) <=
+             settled(QualityThresholds::kTaper);
     });
   }
 
+  /// The cavity filled with fewer irregular nodes (not in four quads) than it has inside:
+  /// a lattice fill where its boundary turns as a rectangle's does (no irregular node), a
+  /// fill round one centre where it turns as a triangle's or a pentagon's (one); each cycle
+  /// node keeps its count of the cavity's quads. Kept when, both relaxed with the quads round
+  /// the cavity, fewer of its quads are tapered (quality.md: taper <= 0.8), the worst corner
+  /// is no lower (or at least the re-fill threshold) and the count changes by at most
+  /// kRegridCountRatio.
   std::optional<Plan> regrid_plan(const std::vector<std::uint32_t>& cavity,
                                   std::string& log) const {
     if (!worth_regrid(cavity)) return std::nullopt;

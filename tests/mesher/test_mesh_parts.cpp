@@ -223,6 +223,22 @@ TEST_CASE("a flip between two diagonals of equal worst corners is the same in ev
   }
 }
 
+TEST_CASE("a regrid's tapered quads are read alike in every pose", "[mesh][pose][regrid]") {
+  // An octahedron of eight triangles: the rows of a triangle's grid are trapezoids of sides 2
+  // and 3, whose taper is 0.8 exactly. Whether a ring round an irregular node had a tapered
+  // quad was read from the patch frame, and the pose's rounding decided (2800 quads as given,
+  // 2704 turned, 2752 and 2720 scaled by 1e-3 and 1e3) until the test took settled values.
+  const RawPart raw = read_brep_json(test_data_dir() + "/parts/octahedron.json");
+  const MeshPartResult first = mesh_part(build_part(raw), MeshPartOptions{});
+  CHECK(first.stats.regrids > 0);
+  for (const Transform& t : {compose(rotation({1.0, 2.0, 3.0}, 0.7), scaling(1e3)),
+                             compose(mirror_x(), scaling(1e-3)), rotation({0.0, 1.0, 1.0}, 2.0)}) {
+    const MeshPartResult r = mesh_part(build_part(transformed(raw, t)), MeshPartOptions{});
+    CHECK(r.check.valid());
+    CHECK(r.mesh.elements.size() == first.mesh.elements.size());
+  }
+}
+
 TEST_CASE("a hole is bridged to its outline the same way in every pose", "[mesh][pose]") {
   // A wavy outline of 400 vertices round a centred hole: the loop bridge's candidates are as
   // long as one another but for rounding. Scaled by 1e-3 the pose's rounding picked another
