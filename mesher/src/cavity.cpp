@@ -99,22 +99,32 @@ class PatchRefill {
     // before the batch; then kept in order. An attempt that read a node which an earlier
     // re-fill of its batch moved, made or re-linked is evaluated again: every decision is the
     // one the attempts made one by one would make (the same mesh, to the last bit).
+    return in_batches(
+        bad.size(), [&](std::size_t k) { return attempt(bad[k].second, poles); }, pass);
+  }
+
+  const std::vector<bool>& alive() const { return alive_; }
+
+ private:
+  /// Attempts attempt_of(0) .. attempt_of(total - 1) in order, in batches evaluated in
+  /// parallel against the mesh as it was before the batch, then kept in order; an attempt that
+  /// read a node which an earlier commit of its batch moved, made or re-linked is evaluated
+  /// again. Returns the count kept (committed as `pass`).
+  template <class AttemptOf>
+  std::size_t in_batches(std::size_t total, AttemptOf attempt_of, int pass) {
     std::size_t kept = 0;
     const std::size_t batch = parallel_ ? kRefillBatch : 1;
-    for (std::size_t first = 0; first < bad.size(); first += batch) {
-      const std::size_t count = std::min(batch, bad.size() - first);
+    for (std::size_t first = 0; first < total; first += batch) {
+      const std::size_t count = std::min(batch, total - first);
       std::vector<Attempt> tries(count);
-      const auto evaluate = [&](std::size_t i) {
-        tries[i] = attempt(bad[first + i].second, poles);
-      };
-      parallel_for(count, evaluate);
+      parallel_for(count, [&](std::size_t i) { tries[i] = attempt_of(first + i); });
       ++batch_id_;
       bool wrote = false;
       for (std::size_t i = 0; i < count; ++i) {
         Attempt& t = tries[i];
         if (wrote && std::any_of(t.reads.begin(), t.reads.end(),
                                  [&](std::uint32_t v) { return written_[v] == batch_id_; }))
-          t = attempt(bad[first + i].second, poles);
+          t = attempt_of(first + i);
         if (!t.log.empty()) std::fputs(t.log.c_str(), stderr);
         if (!t.plan) continue;
         commit(*t.plan, pass);
@@ -125,9 +135,6 @@ class PatchRefill {
     return kept;
   }
 
-  const std::vector<bool>& alive() const { return alive_; }
-
- private:
   /// Whether a node of a quad at q's nodes was moved or made in that pass.
   bool near_change(std::uint32_t q, int pass) const {
     for (std::uint32_t r : cavity_of(q, 1))
@@ -441,6 +448,29 @@ class PatchRefill {
     return ring;
   }
 
+  /// The cavity's quads over local ids: cycle node i is i, inner node k (of `inner`, sorted)
+  /// is cycle.size() + k.
+  std::vector<Quad> local_quads(const std::vector<std::uint32_t>& cavity,
+                                const std::vector<std::uint32_t>& cycle,
+                                const std::vector<std::uint32_t>& inner) const {
+    const auto local_id = [&](std::uint32_t v) {
+      const auto at = std::find(cycle.begin(), cycle.end(), v);
+      return at != cycle.end()
+                 ? static_cast<std::uint32_t>(at - cycle.begin())
+                 : static_cast<std::uint32_t>(
+                       cycle.size() +
+                       static_cast<std::size_t>(std::lower_bound(inner.begin(), inner.end(), v) -
+                                                inner.begin()));
+    };
+    std::vector<Quad> quads;
+    for (std::uint32_t c : cavity) {
+      Quad lq{};
+      for (std::size_t k = 0; k < 4; ++k) lq[k] = local_id(pq_.quads[c][k]);
+      quads.push_back(lq);
+    }
+    return quads;
+  }
+
   /// A re-fill of the cavity, when it raises the worst quad of it and of the quads round it.
   std::optional<Plan> plan_cavity(const std::vector<std::uint32_t>& cavity,
                                   std::string& log) const {
@@ -466,20 +496,9 @@ class PatchRefill {
     const std::size_t n = cycle.size();
     std::vector<Vec2> old_inner;
     for (std::uint32_t v : inner) old_inner.push_back(cf.to_local(pq_.pos[v]));
-    auto local_id = [&](std::uint32_t v) {
-      const auto at = std::find(cycle.begin(), cycle.end(), v);
-      return at != cycle.end()
-                 ? static_cast<std::uint32_t>(at - cycle.begin())
-                 : static_cast<std::uint32_t>(
-                       n + static_cast<std::size_t>(
-                               std::lower_bound(inner.begin(), inner.end(), v) - inner.begin()));
-    };
-    std::vector<Quad> old_quads;
+    const std::vector<Quad> old_quads = local_quads(cavity, cycle, inner);
     double before = std::numeric_limits<double>::infinity();
-    for (std::uint32_t c : cavity) {
-      Quad lq{};
-      for (std::size_t k = 0; k < 4; ++k) lq[k] = local_id(pq_.quads[c][k]);
-      old_quads.push_back(lq);
+    for (const Quad& lq : old_quads) {
       auto at = [&](std::uint32_t i) { return i < n ? face.cycle[i] : old_inner[i - n]; };
       before = std::min(before, min_scaled_jacobian(at(lq[0]), at(lq[1]), at(lq[2]), at(lq[3])));
     }
@@ -607,20 +626,7 @@ class PatchRefill {
     // The old quads over the same local ids.
     std::vector<Vec2> old_inner;
     for (std::uint32_t v : inner) old_inner.push_back(cf.to_local(pq_.pos[v]));
-    const auto local_id = [&](std::uint32_t v) {
-      const auto at = std::find(cycle.begin(), cycle.end(), v);
-      return at != cycle.end()
-                 ? static_cast<std::uint32_t>(at - cycle.begin())
-                 : static_cast<std::uint32_t>(
-                       n + static_cast<std::size_t>(
-                               std::lower_bound(inner.begin(), inner.end(), v) - inner.begin()));
-    };
-    std::vector<Quad> old_quads;
-    for (std::uint32_t c : cavity) {
-      Quad lq{};
-      for (std::size_t k = 0; k < 4; ++k) lq[k] = local_id(pq_.quads[c][k]);
-      old_quads.push_back(lq);
-    }
+    const std::vector<Quad> old_quads = local_quads(cavity, cycle, inner);
     const std::vector<std::uint32_t> ring = ring_of(cavity, cycle);
     // Judged after kRefillSweeps sweeps whatever the smoothing asked for, so that the choice,
     // and the element count, do not depend on it; the new quads keep those positions (also
@@ -668,27 +674,9 @@ class PatchRefill {
     std::vector<std::uint32_t> candidates;
     for (std::uint32_t v = 0; v < pq_.pos.size(); ++v)
       if (!pq_.fixed[v] && !around_[v].empty() && around_[v].size() != 4) candidates.push_back(v);
-    std::size_t kept = 0;
-    const std::size_t batch = parallel_ ? kRefillBatch : 1;
-    for (std::size_t first = 0; first < candidates.size(); first += batch) {
-      const std::size_t count = std::min(batch, candidates.size() - first);
-      std::vector<Attempt> tries(count);
-      parallel_for(count, [&](std::size_t i) { tries[i] = regrid_attempt(candidates[first + i]); });
-      ++batch_id_;
-      bool wrote = false;
-      for (std::size_t i = 0; i < count; ++i) {
-        Attempt& t = tries[i];
-        if (wrote && std::any_of(t.reads.begin(), t.reads.end(),
-                                 [&](std::uint32_t v) { return written_[v] == batch_id_; }))
-          t = regrid_attempt(candidates[first + i]);
-        if (!t.log.empty()) std::fputs(t.log.c_str(), stderr);
-        if (!t.plan) continue;
-        commit(*t.plan, kRefillPasses + 1);
-        wrote = true;
-        ++kept;
-      }
-    }
-    return kept;
+    return in_batches(
+        candidates.size(), [&](std::size_t k) { return regrid_attempt(candidates[k]); },
+        kRefillPasses + 1);
   }
 
  private:
