@@ -67,6 +67,26 @@ constexpr int kRegridSweeps = 100;
 /// the centre twice as large as the rest).
 constexpr double kRegridCountRatio = 1.5;
 
+/// A set of ids cleared in O(1): an id is in it when its mark is the present stamp. Each user
+/// keeps one per thread (the attempts run in parallel).
+class Marks {
+ public:
+  /// Empties the set, for ids below `size`.
+  void clear(std::size_t size) {
+    if (mark_.size() < size) mark_.resize(size, 0);
+    if (++stamp_ == 0) {
+      std::fill(mark_.begin(), mark_.end(), 0);
+      stamp_ = 1;
+    }
+  }
+  void insert(std::uint32_t id) { mark_[id] = stamp_; }
+  bool contains(std::uint32_t id) const { return mark_[id] == stamp_; }
+
+ private:
+  std::vector<std::uint32_t> mark_;
+  std::uint32_t stamp_ = 0;
+};
+
 class PatchRefill {
  public:
   /// `parallel`: evaluate attempts on all cores (for a patch whose re-fill runs alone).
@@ -293,26 +313,20 @@ class PatchRefill {
   /// more of its quads in it but not all), again until it has none: a ring's jagged outline
   /// made straighter, so that more rings turn as a rectangle's or a pentagon's do.
   std::vector<std::uint32_t> closed_region(std::vector<std::uint32_t> region) const {
-    // Membership by stamp (this thread's scratch: attempts run in parallel).
-    thread_local std::vector<std::uint32_t> t_mark;
-    thread_local std::uint32_t t_stamp = 0;
-    if (t_mark.size() < pq_.quads.size()) t_mark.resize(pq_.quads.size(), 0);
-    if (++t_stamp == 0) {
-      std::fill(t_mark.begin(), t_mark.end(), 0);
-      t_stamp = 1;
-    }
-    for (std::uint32_t q : region) t_mark[q] = t_stamp;
+    thread_local Marks in_region;
+    in_region.clear(pq_.quads.size());
+    for (std::uint32_t q : region) in_region.insert(q);
     for (;;) {
       const std::size_t end = region.size();
       for (std::size_t i = 0; i < end; ++i)
         for (std::uint32_t v : pq_.quads[region[i]]) {
           if (pq_.fixed[v]) continue;
           std::size_t in = 0;
-          for (std::uint32_t o : around_[v]) in += t_mark[o] == t_stamp ? 1u : 0u;
+          for (std::uint32_t o : around_[v]) in += in_region.contains(o) ? 1u : 0u;
           if (in < 3 || in == around_[v].size()) continue;
           for (std::uint32_t o : around_[v])
-            if (t_mark[o] != t_stamp) {
-              t_mark[o] = t_stamp;
+            if (!in_region.contains(o)) {
+              in_region.insert(o);
               region.push_back(o);
             }
         }
@@ -542,24 +556,18 @@ class PatchRefill {
   /// its boundary nodes' quads in it turn by 4 round it with an irregular inner node, or by 3
   /// or 5 with two and no reflex node; and a quad of it is tapered. Most rings fail here.
   bool worth_regrid(const std::vector<std::uint32_t>& cavity) const {
-    thread_local std::vector<std::uint32_t> t_quad, t_node;
-    thread_local std::uint32_t t_stamp = 0;
-    if (t_quad.size() < pq_.quads.size()) t_quad.resize(pq_.quads.size(), 0);
-    if (t_node.size() < pq_.pos.size()) t_node.resize(pq_.pos.size(), 0);
-    if (++t_stamp == 0) {
-      std::fill(t_quad.begin(), t_quad.end(), 0);
-      std::fill(t_node.begin(), t_node.end(), 0);
-      t_stamp = 1;
-    }
-    for (std::uint32_t q : cavity) t_quad[q] = t_stamp;
+    thread_local Marks in_cavity, seen;
+    in_cavity.clear(pq_.quads.size());
+    seen.clear(pq_.pos.size());
+    for (std::uint32_t q : cavity) in_cavity.insert(q);
     int turning = 0;
     std::size_t irregular = 0, reflex = 0;
     for (std::uint32_t q : cavity)
       for (std::uint32_t v : pq_.quads[q]) {
-        if (t_node[v] == t_stamp) continue;
-        t_node[v] = t_stamp;
+        if (seen.contains(v)) continue;
+        seen.insert(v);
         std::size_t in = 0;
-        for (std::uint32_t o : around_[v]) in += t_quad[o] == t_stamp ? 1u : 0u;
+        for (std::uint32_t o : around_[v]) in += in_cavity.contains(o) ? 1u : 0u;
         if (in == around_[v].size() && !pq_.fixed[v]) {
           irregular += in != 4 ? 1u : 0u;
           continue;
@@ -598,23 +606,17 @@ class PatchRefill {
     const std::optional<std::vector<std::uint32_t>> inner_found = inner_nodes(cavity, cycle);
     if (!inner_found || inner_found->empty()) return std::nullopt;
     const std::vector<std::uint32_t>& inner = *inner_found;
-    const auto irregular = static_cast<std::size_t>(std::count_if(
-        inner.begin(), inner.end(), [&](std::uint32_t v) { return around_[v].size() != 4; }));
+    // The turns worth_regrid added up (and checked, with the irregular inner nodes), per node.
     std::vector<int> turn(n);
     int turning = 0;
     for (std::size_t i = 0; i < n; ++i) {
       const auto count = std::count_if(
           around_[cycle[i]].begin(), around_[cycle[i]].end(),
           [&](std::uint32_t o) { return std::binary_search(cavity.begin(), cavity.end(), o); });
-      if (count < 1 || count > 3) return std::nullopt;
       turn[i] = 2 - static_cast<int>(count);
       turning += turn[i];
     }
-    std::optional<TurnFill> fill;
-    if (turning == 4 && irregular >= 1)
-      fill = lattice_fill(turn);
-    else if ((turning == 3 || turning == 5) && irregular >= 2)
-      fill = sided_fill(turn);
+    std::optional<TurnFill> fill = turning == 4 ? lattice_fill(turn) : sided_fill(turn);
     if (!fill) return std::nullopt;
     const double more =
         static_cast<double>(fill->quads.size()) / static_cast<double>(cavity.size());
@@ -655,10 +657,10 @@ class PatchRefill {
       for (const Vec2& p : cyc) mid = mid + (1.0 / static_cast<double>(n)) * p;
       mid = cf.to_patch(mid);
       std::snprintf(line, sizeof line,
-                    "regrid: near (%g, %g) %zu quads, %zu irregular, turning %d -> %zu quads, "
+                    "regrid: near (%g, %g) %zu quads, %zu inner nodes, turning %d -> %zu quads, "
                     "tapered %zu -> %zu, "
                     "worst %.3f -> %.3f%s\n",
-                    mid.x, mid.y, cavity.size(), irregular, turning, fill->quads.size(), t_was,
+                    mid.x, mid.y, cavity.size(), inner.size(), turning, fill->quads.size(), t_was,
                     t_now, was.worst, now.worst, keep ? " kept" : "");
       log += line;
     }
