@@ -2178,7 +2178,7 @@ std::optional<FaceMesh> pick_unstructured(const FaceInput& face, bool fans, int 
   for (int k = 0; k < 9; ++k) {
     if (!fans && (k == 2 || k == 3 || k >= 5)) continue;
     if ((k == 2 || k == 3) && face.cycle.size() > kFanSplitMax) continue;
-    if (k == 5 && best_worst >= std::floor(kReflexSkipAbove / kChoiceStep)) continue;
+    if (k == 5 && best_worst >= quantised(kReflexSkipAbove)) continue;
     std::optional<FaceMesh> m = k < 2   ? fill_split(face, static_cast<std::uint32_t>(k))
                                 : k < 4 ? fill_fan_split(face, static_cast<std::uint32_t>(k - 2))
                                 : k < 5 ? fill_cut(face)
