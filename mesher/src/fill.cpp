@@ -58,10 +58,16 @@ Vec2 LocalFrame::to_patch(Vec2 q) const {
 }
 
 double min_scaled_jacobian(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  const Vec2 p[4] = {a, b, c, d};
+  // corner_jacobian at each corner, its edges' squared lengths computed once (an edge and its
+  // reverse square alike, to the bit): the same values.
+  const Vec2 e[4] = {b - a, c - b, d - c, a - d};  // e[i]: from corner i to corner i + 1
+  const double l[4] = {dot(e[0], e[0]), dot(e[1], e[1]), dot(e[2], e[2]), dot(e[3], e[3])};
   double worst = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < 4; ++i)
-    worst = std::min(worst, corner_jacobian(p[i], p[(i + 1) % 4], p[(i + 3) % 4]));
+  for (int i = 0; i < 4; ++i) {
+    const int j = (i + 3) % 4;  // the edge into corner i
+    const double l2 = l[i] * l[j];
+    worst = std::min(worst, l2 > 0.0 ? cross(e[i], -1.0 * e[j]) / std::sqrt(l2) : -1.0);
+  }
   return worst;
 }
 
