@@ -485,6 +485,24 @@ class PatchRefill {
     return quads;
   }
 
+  /// A cavity in its own gridded frame (LocalFrame: its first node, the least id, at the
+  /// origin), so that the same cavity in every pose of the part is the same problem, bit for
+  /// bit, and the templates and the relaxation decide alike: its cycle's and inner nodes'
+  /// positions there, and its quads over local ids (local_quads).
+  struct Posed {
+    LocalFrame cf;
+    std::vector<Vec2> cycle, inner;
+    std::vector<Quad> quads;
+  };
+  Posed posed(const std::vector<std::uint32_t>& cavity,
+              const std::vector<std::uint32_t>& cycle,
+              const std::vector<std::uint32_t>& inner) const {
+    Posed p{LocalFrame(pq_.pos, cycle), {}, {}, local_quads(cavity, cycle, inner)};
+    for (std::uint32_t v : cycle) p.cycle.push_back(p.cf.to_local(pq_.pos[v]));
+    for (std::uint32_t v : inner) p.inner.push_back(p.cf.to_local(pq_.pos[v]));
+    return p;
+  }
+
   /// A re-fill of the cavity, when it raises the worst quad of it and of the quads round it.
   std::optional<Plan> plan_cavity(const std::vector<std::uint32_t>& cavity,
                                   std::string& log) const {
@@ -498,19 +516,14 @@ class PatchRefill {
     // The quads round it: alive, not in it, at a node of its boundary.
     const std::vector<std::uint32_t> ring = ring_of(cavity, cycle);
 
+    const Posed old = posed(cavity, cycle, inner);
+    const LocalFrame& cf = old.cf;
+    const std::vector<Vec2>& old_inner = old.inner;
+    const std::vector<Quad>& old_quads = old.quads;
     FaceInput face;
-    // The cavity is filled and relaxed in its own gridded frame (LocalFrame: its first node,
-    // the least id, at the origin): the same cavity in every pose of the part is the same
-    // problem, bit for bit, and the templates and the relaxation decide alike.
-    const LocalFrame cf(pq_.pos, cycle);
-    for (std::uint32_t v : cycle) {
-      face.cycle.push_back(cf.to_local(pq_.pos[v]));
-      face.free_nodes.push_back(!pq_.fixed[v]);
-    }
+    face.cycle = old.cycle;
+    for (std::uint32_t v : cycle) face.free_nodes.push_back(!pq_.fixed[v]);
     const std::size_t n = cycle.size();
-    std::vector<Vec2> old_inner;
-    for (std::uint32_t v : inner) old_inner.push_back(cf.to_local(pq_.pos[v]));
-    const std::vector<Quad> old_quads = local_quads(cavity, cycle, inner);
     double before = std::numeric_limits<double>::infinity();
     for (const Quad& lq : old_quads) {
       auto at = [&](std::uint32_t i) { return i < n ? face.cycle[i] : old_inner[i - n]; };
@@ -621,14 +634,12 @@ class PatchRefill {
     const double more =
         static_cast<double>(fill->quads.size()) / static_cast<double>(cavity.size());
     if (more > kRegridCountRatio || more * kRegridCountRatio < 1.0) return std::nullopt;
-    const LocalFrame cf(pq_.pos, cycle);
-    std::vector<Vec2> cyc;
-    for (std::uint32_t v : cycle) cyc.push_back(cf.to_local(pq_.pos[v]));
+    const Posed old = posed(cavity, cycle, inner);
+    const LocalFrame& cf = old.cf;
+    const std::vector<Vec2>& cyc = old.cycle;
+    const std::vector<Vec2>& old_inner = old.inner;
+    const std::vector<Quad>& old_quads = old.quads;
     place_harmonic(*fill, cyc, kRegridSweeps);
-    // The old quads over the same local ids.
-    std::vector<Vec2> old_inner;
-    for (std::uint32_t v : inner) old_inner.push_back(cf.to_local(pq_.pos[v]));
-    const std::vector<Quad> old_quads = local_quads(cavity, cycle, inner);
     const std::vector<std::uint32_t> ring = ring_of(cavity, cycle);
     // Judged after kRefillSweeps sweeps whatever the smoothing asked for, so that the choice,
     // and the element count, do not depend on it; the new quads keep those positions (also

@@ -65,8 +65,7 @@ double min_scaled_jacobian(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   double worst = std::numeric_limits<double>::infinity();
   for (int i = 0; i < 4; ++i) {
     const int j = (i + 3) % 4;  // the edge into corner i
-    const double l2 = l[i] * l[j];
-    worst = std::min(worst, l2 > 0.0 ? cross(e[i], -1.0 * e[j]) / std::sqrt(l2) : -1.0);
+    worst = std::min(worst, corner_of_edges(e[i], -1.0 * e[j], l[i] * l[j]));
   }
   return worst;
 }
@@ -513,8 +512,7 @@ double triangle_shape(Vec2 a, Vec2 b, Vec2 c) {
   for (int i = 0; i < 3; ++i) {
     const Vec2 e1 = p[(i + 1) % 3] - p[i];
     const Vec2 e0 = p[(i + 2) % 3] - p[i];
-    const double l2 = dot(e1, e1) * dot(e0, e0);  // one square root, not two hypot calls
-    worst = std::min(worst, l2 > 0.0 ? cross(e1, e0) / std::sqrt(l2) : -1.0);
+    worst = std::min(worst, corner_of_edges(e1, e0, dot(e1, e1) * dot(e0, e0)));
   }
   return worst;
 }
@@ -2813,9 +2811,6 @@ void untangle_nodes(std::vector<Vec2>& pos,
   // sweep_nodes); each visit binds them once (a thread_local is looked up at every use).
   thread_local std::vector<Opposite> t_ring;
   thread_local std::vector<Vec2> t_edges;  // the edges at a node, for its step
-  const auto corner = [](Vec2 e1, Vec2 e0, double l2) {
-    return l2 > 0.0 ? cross(e1, e0) / std::sqrt(l2) : -1.0;
-  };
   // The worst corner round v at p (min over its quads, as worst_at's raw), `short_edge` set
   // when an edge at v is below its floor. With `give_up` finite, it may stop as soon as the
   // worst so far is below it (then the value returned is only known to be below it).
@@ -2832,9 +2827,11 @@ void untangle_nodes(std::vector<Vec2>& pos,
       const double la = dot(ea, ea), ld = dot(ed, ed);
       if (la < fl2 || ld < fl2) short_edge = true;
       if (!(short_edge && may_stop)) {
-        w = std::min(w, corner(ea, ed, la * ld));            // at v: e1 = a - v, e0 = d - v
-        w = std::min(w, corner(o.c - o.a, pa, o.ca2 * la));  // at a: e1 = c - a, e0 = v - a
-        w = std::min(w, corner(pd, o.c - o.d, ld * o.cd2));  // at d: e1 = v - d, e0 = c - d
+        w = std::min(w, corner_of_edges(ea, ed, la * ld));  // at v: e1 = a - v, e0 = d - v
+        w = std::min(w,
+                     corner_of_edges(o.c - o.a, pa, o.ca2 * la));  // at a: e1 = c - a, e0 = v - a
+        w = std::min(w,
+                     corner_of_edges(pd, o.c - o.d, ld * o.cd2));  // at d: e1 = v - d, e0 = c - d
         w = std::min(w, o.jc);
       }
       if (w < give_up || (short_edge && may_stop)) {
@@ -2898,7 +2895,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
       const Vec2 e1 = o.d - o.c, e0 = o.a - o.c;  // the corner at c: e1 to d, e0 to a
       o.ca2 = dot(o.c - o.a, o.c - o.a);
       o.cd2 = dot(o.c - o.d, o.c - o.d);
-      o.jc = corner(e1, e0, dot(e1, e1) * dot(e0, e0));
+      o.jc = corner_of_edges(e1, e0, dot(e1, e1) * dot(e0, e0));
       ring.push_back(o);
     }
     // `before`: the worst quad round v now, whatever its edges; `current` as worst_at.

@@ -92,13 +92,19 @@ class LocalFrame {
 /// far above rounding.
 constexpr double kLocalGrid = 1.0 / 1048576.0;
 
+/// The scaled Jacobian of a corner between edges e1 (to the next node) and e0 (to the previous
+/// one), l2 = |e1|^2 |e0|^2 (one square root, not two hypot calls; callers that have the
+/// squared lengths pass their product); -1 at a zero-length edge.
+inline double corner_of_edges(Vec2 e1, Vec2 e0, double l2) {
+  return l2 > 0.0 ? cross(e1, e0) / std::sqrt(l2) : -1.0;
+}
+
 /// The scaled Jacobian of a quad's corner at `at`, between its edges to `next` and `prev`
 /// (counter-clockwise > 0); -1 at a zero-length edge.
 inline double corner_jacobian(Vec2 at, Vec2 next, Vec2 prev) {
   const Vec2 e1 = next - at;
   const Vec2 e0 = prev - at;
-  const double l2 = dot(e1, e1) * dot(e0, e0);  // one square root, not two hypot calls
-  return l2 > 0.0 ? cross(e1, e0) / std::sqrt(l2) : -1.0;
+  return corner_of_edges(e1, e0, dot(e1, e1) * dot(e0, e0));
 }
 
 /// Smallest scaled Jacobian over the four corners of quad abcd (counter-clockwise > 0).
