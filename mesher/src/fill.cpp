@@ -2126,6 +2126,15 @@ std::optional<FaceMesh> fill_reflex(const FaceInput& face, int depth) {
         break;
       }
       m.embed(*filled, ids);
+      // The whole face's score is the least of its quads' (face_score): piece 0's quads
+      // already bound it, and a chord that cannot reach the best one's quantised worst need
+      // not fill piece 1 (the choice, hence the quads, are the same).
+      if (piece == 0 && best &&
+          quantised(face_score(m.out.quads, [&](std::uint32_t i) { return m.pos(i); }, face)) <
+              quantised(best->min_jacobian)) {
+        ok = false;
+        break;
+      }
     }
     if (!ok) continue;
     FaceMesh out = m.finish();
