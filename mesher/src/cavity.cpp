@@ -185,11 +185,17 @@ class PatchRefill {
 
   /// The quads at the nodes of `quads`, sorted.
   std::vector<std::uint32_t> quads_at_nodes_of(const std::vector<std::uint32_t>& quads) const {
+    thread_local Marks seen;  // each quad once, then sorted (most are at several nodes)
+    seen.clear(pq_.quads.size());
     std::vector<std::uint32_t> c;
     for (std::uint32_t r : quads)
-      for (std::uint32_t v : pq_.quads[r]) c.insert(c.end(), around_[v].begin(), around_[v].end());
+      for (std::uint32_t v : pq_.quads[r])
+        for (std::uint32_t o : around_[v])
+          if (!seen.contains(o)) {
+            seen.insert(o);
+            c.push_back(o);
+          }
     std::sort(c.begin(), c.end());
-    c.erase(std::unique(c.begin(), c.end()), c.end());
     return c;
   }
 
@@ -356,10 +362,16 @@ class PatchRefill {
       looked = closed;
       t.plan = regrid_plan(closed, t.log);
     }
+    thread_local Marks read;
+    read.clear(pq_.pos.size());
+    read.insert(v);
     for (std::uint32_t q : quads_at_nodes_of(looked))
-      t.reads.insert(t.reads.end(), pq_.quads[q].begin(), pq_.quads[q].end());
+      for (std::uint32_t u : pq_.quads[q])
+        if (!read.contains(u)) {
+          read.insert(u);
+          t.reads.push_back(u);
+        }
     std::sort(t.reads.begin(), t.reads.end());
-    t.reads.erase(std::unique(t.reads.begin(), t.reads.end()), t.reads.end());
     return t;
   }
 
@@ -391,15 +403,27 @@ class PatchRefill {
   /// nodes of... q, three rings out (its largest cavity is two rings; the quads round a
   /// cavity, whose nodes the relaxation reads, one more).
   std::vector<std::uint32_t> reach(std::uint32_t q) const {
-    std::vector<std::uint32_t> nodes(pq_.quads[q].begin(), pq_.quads[q].end());
+    thread_local Marks seen;
+    seen.clear(pq_.pos.size());
+    std::vector<std::uint32_t> nodes;
+    for (std::uint32_t v : pq_.quads[q])
+      if (!seen.contains(v)) {
+        seen.insert(v);
+        nodes.push_back(v);
+      }
+    std::size_t begin = 0;
     for (int ring = 0; ring < 3; ++ring) {
       const std::size_t end = nodes.size();
-      for (std::size_t i = 0; i < end; ++i)
+      for (std::size_t i = begin; i < end; ++i)
         for (std::uint32_t o : around_[nodes[i]])
-          nodes.insert(nodes.end(), pq_.quads[o].begin(), pq_.quads[o].end());
-      std::sort(nodes.begin(), nodes.end());
-      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+          for (std::uint32_t u : pq_.quads[o])
+            if (!seen.contains(u)) {
+              seen.insert(u);
+              nodes.push_back(u);
+            }
+      begin = end;
     }
+    std::sort(nodes.begin(), nodes.end());
     return nodes;
   }
 
