@@ -9,6 +9,8 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <string>
+#include <unordered_map>
 
 #include "cdt.hpp"
 #include "laytracks/brep/error.hpp"
@@ -1193,7 +1195,12 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
 /// at most kCutChoices per polygon and `budget` polygons in all). False when it finds no way.
 constexpr std::size_t kCutChoices = 4;
 
-bool cut_down(Builder& m, const std::vector<std::uint32_t>& ids, int& budget) {
+/// best_chords of the pieces one fill_cut meets, by their nodes' positions (the bytes): the
+/// search backtracks and meets many a piece again (40% of the searches on
+/// cgal_wiggly_03_cgal), and best_chords reads nothing but the positions.
+using ChordCache = std::unordered_map<std::string, std::vector<Chord>>;
+
+bool cut_down(Builder& m, const std::vector<std::uint32_t>& ids, int& budget, ChordCache& cache) {
   const auto n = static_cast<std::uint32_t>(ids.size());
   if (n == 4) {
     m.quad(ids[0], ids[1], ids[2], ids[3]);
@@ -1210,7 +1217,13 @@ bool cut_down(Builder& m, const std::vector<std::uint32_t>& ids, int& budget) {
     m.embed(g, ids);
     return true;
   }
-  for (const Chord& c : best_chords(poly, kCutChoices)) {
+  std::string key(reinterpret_cast<const char*>(poly.data()), poly.size() * sizeof(Vec2));
+  auto found = cache.find(key);
+  if (found == cache.end())
+    found = cache.emplace(std::move(key), best_chords(poly, kCutChoices)).first;
+  // A reference to the element stays valid while the recursion below adds others.
+  const std::vector<Chord>& chords = found->second;
+  for (const Chord& c : chords) {
     const std::size_t interior = m.out.interior.size(), quads = m.out.quads.size();
     std::vector<std::uint32_t> chord;  // from i to j, ends excluded
     for (const Vec2& p : c.inner) chord.push_back(m.add(p));
@@ -1221,7 +1234,7 @@ bool cut_down(Builder& m, const std::vector<std::uint32_t>& ids, int& budget) {
     for (std::uint32_t k = c.j; k != c.i; k = (k + 1) % n) b.push_back(ids[k]);
     b.push_back(ids[c.i]);
     b.insert(b.end(), chord.begin(), chord.end());
-    if (cut_down(m, a, budget) && cut_down(m, b, budget)) return true;
+    if (cut_down(m, a, budget, cache) && cut_down(m, b, budget, cache)) return true;
     m.out.interior.resize(interior);
     m.out.quads.resize(quads);
     if (budget < 0) return false;
@@ -1414,7 +1427,8 @@ std::optional<FaceMesh> fill_cut(const FaceInput& face) {
   std::vector<std::uint32_t> ids(n);
   for (std::uint32_t k = 0; k < n; ++k) ids[k] = k;
   int budget = 4 * static_cast<int>(n);
-  if (!cut_down(m, ids, budget)) return std::nullopt;
+  ChordCache cache;
+  if (!cut_down(m, ids, budget, cache)) return std::nullopt;
   FaceMesh r = m.finish();
   relax(r, face, 30);
   return r;
