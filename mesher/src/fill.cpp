@@ -3130,37 +3130,54 @@ void untaper_nodes(std::vector<Vec2>& pos,
   // Per quad round the node being moved: its faults before the move (scratch, its thread's
   // own: sweep_nodes; a visit binds it once).
   thread_local std::vector<unsigned> t_faults;
+  // What a move must stay within to be taken (try_move's tests that only get worse as the
+  // quads round v are added up: the sum, the tapered count, the worst quad, the area ratio).
+  struct Bar {
+    double sum;     ///< the sum must end below this
+    int tapered;    ///< at most this many tapered (when descending; else any)
+    double worst;   ///< settled worst no lower than this
+    bool positive;  ///< the worst must stay positive (keeps_sign)
+    double ratio;   ///< area ratio at most this
+  };
   // The sum of (1 - taper)^2 over the quads round v, their worst scaled Jacobian and the sum
   // of their scaled Jacobians, the largest area ratio between one of them and a quad across
   // an edge of it, and how many of them are tapered (quality.md: taper <= 0.8); with `faults`
-  // filled, infinity when a quad has a fault it did not have.
+  // filled, infinity when a quad has a fault it did not have. With a `bar`, infinity as soon
+  // as the quads so far fail it (each of its measures only gets worse with more quads: the
+  // move would not be taken, and the ones that are taken are measured in full).
   const auto measure = [&](std::vector<unsigned>& faults, std::uint32_t v, double& worst,
-                           double& jacobians, double& ratio, int& tapered) {
+                           double& jacobians, double& ratio, int& tapered, const Bar* bar) {
     double sum = 0.0;
     worst = std::numeric_limits<double>::infinity();
     jacobians = 0.0;
     ratio = 1.0;
     tapered = 0;
+    constexpr double kFails = std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < around[v].size(); ++i) {
       const std::uint32_t q = around[v][i];
       const auto& x = quads[q];
       const Vec2 a = pos[x[0]], b = pos[x[1]], c = pos[x[2]], d = pos[x[3]];
       const unsigned f = midline_faults(a, b, c, d);
-      if (faults.size() < around[v].size()) faults.push_back(f);
-      else if (f & ~faults[i]) return std::numeric_limits<double>::infinity();
+      if (faults.size() < around[v].size())
+        faults.push_back(f);
+      else if (f & ~faults[i])
+        return kFails;
       const double taper = quad_taper(a, b, c, d);
       if (taper <= QualityThresholds::kTaper) ++tapered;
       const double off = 1.0 - taper;
       sum += off * off;
+      if (bar && (!(sum < bar->sum) || tapered > bar->tapered)) return kFails;
       const double jq = min_scaled_jacobian(a, b, c, d);
       worst = std::min(worst, jq);
       jacobians += jq;
+      if (bar && (settled(worst) < bar->worst || (bar->positive && !(worst > 0.0)))) return kFails;
       const double aq = area(q);
       for (std::uint32_t w : across[q]) {
         if (w == kNone) continue;
         const double aw = area(w);
         if (aq > 0.0 && aw > 0.0) ratio = std::max(ratio, std::max(aq, aw) / std::min(aq, aw));
       }
+      if (bar && ratio > bar->ratio) return kFails;
     }
     return sum;
   };
@@ -3198,14 +3215,17 @@ void untaper_nodes(std::vector<Vec2>& pos,
       double worst_before = 0.0, jacobians_before = 0.0, ratio_before = 1.0;
       int tapered_before = 0;
       const double before =
-          measure(faults, v, worst_before, jacobians_before, ratio_before, tapered_before);
+          measure(faults, v, worst_before, jacobians_before, ratio_before, tapered_before, nullptr);
       const double ratio_cap = std::max(ratio_before, kUntaperAreaRatio);
+      const Bar bar{before - kUntaperGain,
+                    descend ? tapered_before : std::numeric_limits<int>::max(),
+                    settled(worst_before), worst_before > 0.0, ratio_cap};
       // Moves v to p when that passes every test; else leaves it where it was.
       const auto try_move = [&](Vec2 p) {
         pos[v] = p;
         double worst = 0.0, jacobians = 0.0, ratio = 1.0;
         int tapered = 0;
-        const double after = measure(faults, v, worst, jacobians, ratio, tapered);
+        const double after = measure(faults, v, worst, jacobians, ratio, tapered, &bar);
         if (after < before - kUntaperGain && (!descend || tapered <= tapered_before) &&
             settled(worst) >= settled(worst_before) && keeps_sign(worst_before, worst) &&
             ratio <= ratio_cap && jacobians >= jacobians_before - kUntaperJacobianSlack)
