@@ -2546,11 +2546,23 @@ class Settled {
 
 bool same_bits(Vec2 a, Vec2 b) { return std::memcmp(&a, &b, sizeof(Vec2)) == 0; }
 
+/// How many of `quads` each of n nodes is in: the per-node lists are sized by it and so
+/// allocated once (the relaxations build them for every template tried and every cavity).
+std::vector<std::uint32_t> quad_counts(std::size_t n,
+                                       const std::vector<std::array<std::uint32_t, 4>>& quads) {
+  std::vector<std::uint32_t> count(n, 0);
+  for (const auto& x : quads)
+    for (std::uint32_t v : x) ++count[v];
+  return count;
+}
+
 /// Per node of n, the quads it is a corner of (in quad order; twice for a node that is two
 /// corners of one quad).
 std::vector<std::vector<std::uint32_t>> quads_at_nodes(std::size_t n,
                                                        const std::vector<std::array<std::uint32_t, 4>>& quads) {
   std::vector<std::vector<std::uint32_t>> around(n);
+  const std::vector<std::uint32_t> count = quad_counts(n, quads);
+  for (std::size_t v = 0; v < n; ++v) around[v].reserve(count[v]);
   for (std::uint32_t q = 0; q < quads.size(); ++q)
     for (std::uint32_t v : quads[q]) around[v].push_back(q);
   return around;
@@ -2723,6 +2735,11 @@ void smooth_nodes(std::vector<Vec2>& pos,
                   const SweepSchedule* schedule) {
   const std::size_t n = pos.size();
   std::vector<std::vector<std::uint32_t>> nbr(n), around(n);
+  const std::vector<std::uint32_t> count = quad_counts(n, quads);
+  for (std::size_t v = 0; v < n; ++v) {
+    nbr[v].reserve(2 * count[v]);
+    around[v].reserve(count[v]);
+  }
   for (std::uint32_t q = 0; q < quads.size(); ++q) {
     for (std::size_t k = 0; k < 4; ++k) {
       const std::uint32_t a = quads[q][k], b = quads[q][(k + 1) % 4];
@@ -3023,6 +3040,11 @@ void optimize_nodes(std::vector<Vec2>& pos,
   };
   std::vector<std::vector<Corner>> corners(n);
   std::vector<std::vector<std::uint32_t>> around(n);
+  const std::vector<std::uint32_t> count = quad_counts(n, quads);
+  for (std::size_t v = 0; v < n; ++v) {
+    corners[v].reserve(3 * count[v]);
+    around[v].reserve(count[v]);
+  }
   for (std::uint32_t q = 0; q < quads.size(); ++q)
     for (std::size_t k = 0; k < 4; ++k) {
       const std::uint32_t v = quads[q][k];
