@@ -2498,13 +2498,57 @@ namespace {
 
 bool keeps_sign(double before, double after) { return after > 0.0 || !(before > 0.0); }
 
+/// A list per node, all in one block (each node's slice between offsets): the node movers'
+/// adjacency, built for every template tried and every cavity relaxed, without an
+/// allocation per node (with one per node, allocation was a tenth of the re-fill's time).
+template <class T>
+class NodeLists {
+ public:
+  /// A node's list, as far as it is filled.
+  struct Range {
+    const T* first;
+    const T* last;
+    const T* begin() const { return first; }
+    const T* end() const { return last; }
+    std::size_t size() const { return static_cast<std::size_t>(last - first); }
+    bool empty() const { return first == last; }
+    const T& operator[](std::size_t i) const { return first[i]; }
+    const T& front() const { return *first; }
+  };
+  /// Room for count[v] items in node v's list; each starts empty.
+  explicit NodeLists(const std::vector<std::uint32_t>& count) : start_(count.size() + 1, 0) {
+    for (std::size_t v = 0; v < count.size(); ++v) start_[v + 1] = start_[v] + count[v];
+    fill_.assign(start_.begin(), start_.end() - 1);
+    items_.resize(start_.back());
+  }
+  void push(std::size_t v, const T& item) { items_[fill_[v]++] = item; }
+  /// Sorts node v's list and drops its repeats.
+  void sort_unique(std::size_t v) {
+    T* first = items_.data() + start_[v];
+    T* last = items_.data() + fill_[v];
+    std::sort(first, last);
+    fill_[v] = static_cast<std::size_t>(std::unique(first, last) - items_.data());
+  }
+  Range operator[](std::size_t v) const {
+    return {items_.data() + start_[v], items_.data() + fill_[v]};
+  }
+  std::size_t size() const { return fill_.size(); }
+
+ private:
+  std::vector<std::size_t> start_, fill_;
+  std::vector<T> items_;
+};
+
+using QuadsAt = NodeLists<std::uint32_t>;
+
 /// Which nodes a sweep may pass over: what a sweep does at node v depends on the positions of
 /// v and of the other nodes of its quads (its ring) only, so a node whose last visit left it
 /// where it was, and none of whose ring has moved since, would do the same again: nothing.
 /// Skipping it changes no result, to the last bit.
 class Settled {
  public:
-  Settled(std::size_t n, const std::vector<std::vector<std::uint32_t>>& around,
+  Settled(std::size_t n,
+          const QuadsAt& around,
           const std::vector<std::array<std::uint32_t, 4>>& quads)
       : start_(n + 1, 0), changed_(n, 0), settled_(n, 0) {
     std::vector<std::uint32_t> r;
@@ -2558,13 +2602,10 @@ std::vector<std::uint32_t> quad_counts(std::size_t n,
 
 /// Per node of n, the quads it is a corner of (in quad order; twice for a node that is two
 /// corners of one quad).
-std::vector<std::vector<std::uint32_t>> quads_at_nodes(std::size_t n,
-                                                       const std::vector<std::array<std::uint32_t, 4>>& quads) {
-  std::vector<std::vector<std::uint32_t>> around(n);
-  const std::vector<std::uint32_t> count = quad_counts(n, quads);
-  for (std::size_t v = 0; v < n; ++v) around[v].reserve(count[v]);
+QuadsAt quads_at_nodes(std::size_t n, const std::vector<std::array<std::uint32_t, 4>>& quads) {
+  QuadsAt around(quad_counts(n, quads));
   for (std::uint32_t q = 0; q < quads.size(); ++q)
-    for (std::uint32_t v : quads[q]) around[v].push_back(q);
+    for (std::uint32_t v : quads[q]) around.push(v, q);
   return around;
 }
 
@@ -2578,7 +2619,7 @@ std::vector<std::vector<std::uint32_t>> quads_at_nodes(std::size_t n,
 template <class Visit>
 void sweep_nodes(std::vector<Vec2>& pos,
                  const std::vector<bool>& fixed,
-                 const std::vector<std::vector<std::uint32_t>>& around,
+                 const QuadsAt& around,
                  const std::vector<std::array<std::uint32_t, 4>>& quads,
                  int iterations,
                  const SweepSchedule* schedule,
@@ -2639,7 +2680,7 @@ unsigned midline_faults(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3) {
 
 SweepSchedule sweep_schedule(std::size_t n, const std::vector<bool>& fixed,
                              const std::vector<std::array<std::uint32_t, 4>>& quads) {
-  const std::vector<std::vector<std::uint32_t>> around = quads_at_nodes(n, quads);
+  const QuadsAt around = quads_at_nodes(n, quads);
   const auto movable = [&](std::uint32_t v) { return !fixed[v] && !around[v].empty(); };
   std::size_t count = 0;
   for (std::uint32_t v = 0; v < n; ++v)
@@ -2734,24 +2775,19 @@ void smooth_nodes(std::vector<Vec2>& pos,
                   int iterations,
                   const SweepSchedule* schedule) {
   const std::size_t n = pos.size();
-  std::vector<std::vector<std::uint32_t>> nbr(n), around(n);
-  const std::vector<std::uint32_t> count = quad_counts(n, quads);
-  for (std::size_t v = 0; v < n; ++v) {
-    nbr[v].reserve(2 * count[v]);
-    around[v].reserve(count[v]);
-  }
+  std::vector<std::uint32_t> count = quad_counts(n, quads);
+  QuadsAt around(count);
+  for (std::uint32_t& c : count) c *= 2;  // a node's edges: two per quad at it, before repeats go
+  QuadsAt nbr(count);
   for (std::uint32_t q = 0; q < quads.size(); ++q) {
     for (std::size_t k = 0; k < 4; ++k) {
       const std::uint32_t a = quads[q][k], b = quads[q][(k + 1) % 4];
-      nbr[a].push_back(b);
-      nbr[b].push_back(a);
-      around[a].push_back(q);
+      nbr.push(a, b);
+      nbr.push(b, a);
+      around.push(a, q);
     }
   }
-  for (auto& v : nbr) {
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
-  }
+  for (std::size_t v = 0; v < n; ++v) nbr.sort_unique(v);
   auto jac = [&](std::uint32_t q) {
     const auto& x = quads[q];
     return min_scaled_jacobian(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]);
@@ -2800,7 +2836,7 @@ void untangle_nodes(std::vector<Vec2>& pos,
                     bool strict,
                     const SweepSchedule* schedule) {
   const std::size_t n = pos.size();
-  const std::vector<std::vector<std::uint32_t>> around = quads_at_nodes(n, quads);
+  const QuadsAt around = quads_at_nodes(n, quads);
   // Scaled Jacobians do not see size: a node may not come closer to a neighbour than
   // kMinEdgeFraction x the mean length of its edges before the search, or quads would shrink
   // to points.
@@ -3038,18 +3074,15 @@ void optimize_nodes(std::vector<Vec2>& pos,
     std::uint32_t q;
     std::size_t k;
   };
-  std::vector<std::vector<Corner>> corners(n);
-  std::vector<std::vector<std::uint32_t>> around(n);
-  const std::vector<std::uint32_t> count = quad_counts(n, quads);
-  for (std::size_t v = 0; v < n; ++v) {
-    corners[v].reserve(3 * count[v]);
-    around[v].reserve(count[v]);
-  }
+  std::vector<std::uint32_t> count = quad_counts(n, quads);
+  QuadsAt around(count);
+  for (std::uint32_t& c : count) c *= 3;
+  NodeLists<Corner> corners(count);
   for (std::uint32_t q = 0; q < quads.size(); ++q)
     for (std::size_t k = 0; k < 4; ++k) {
       const std::uint32_t v = quads[q][k];
-      around[v].push_back(q);
-      for (std::size_t d : {0u, 1u, 3u}) corners[v].push_back({q, (k + d) % 4});
+      around.push(v, q);
+      for (std::size_t d : {0u, 1u, 3u}) corners.push(v, {q, (k + d) % 4});
     }
   // Target lengths: every edge as long as it is now. Measured against them, a corner's ideal
   // is a right angle between edges of their present lengths, so a graded or stretched mesh
@@ -3134,7 +3167,7 @@ void untaper_nodes(std::vector<Vec2>& pos,
                    int iterations,
                    const SweepSchedule* schedule) {
   const std::size_t n = pos.size();
-  const std::vector<std::vector<std::uint32_t>> around = quads_at_nodes(n, quads);
+  const QuadsAt around = quads_at_nodes(n, quads);
   // The quad across each edge of each quad (kNone on the boundary).
   constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   std::vector<std::array<std::uint32_t, 4>> across(quads.size(), {kNone, kNone, kNone, kNone});
