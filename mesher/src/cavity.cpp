@@ -40,8 +40,10 @@ constexpr std::size_t kRefillFirst = 32;
 constexpr std::size_t kRefillShare = 50;
 /// Passes over a patch; each after the first looks only near what the one before changed.
 constexpr int kRefillPasses = 2;
-/// Cavities of more boundary nodes than this are not tried (the templates are O(n^3)).
+/// Cavities of more boundary nodes than this are not tried (the templates are O(n^3)); a
+/// pole's star (pole_plan) up to kMaxPoleCavityNodes.
 constexpr std::size_t kMaxCavityNodes = 48;
+constexpr std::size_t kMaxPoleCavityNodes = 96;
 /// A cavity is relaxed by the final smoothing's sweeps (final_sweeps), at most kRefillSweeps
 /// of each kind (the cavity is small).
 constexpr int kRefillSweeps = 4;
@@ -395,8 +397,8 @@ class PatchRefill {
     if (pq_.fixed[pole] || around_[pole].size() < kPoleValence) return std::nullopt;
     std::vector<std::uint32_t> star = around_[pole];
     std::sort(star.begin(), star.end());
-    if (std::optional<Plan> plan = plan_cavity(star, log)) return plan;
-    return plan_cavity(quads_at_nodes_of(star), log);
+    if (std::optional<Plan> plan = plan_cavity(star, log, kMaxPoleCavityNodes)) return plan;
+    return plan_cavity(quads_at_nodes_of(star), log, kMaxPoleCavityNodes);
   }
 
   /// What an attempt round q reads: the nodes of the quads at the nodes of the quads at the
@@ -429,8 +431,8 @@ class PatchRefill {
 
   /// The boundary of a cavity as one simple cycle (counter-clockwise: the directed edges whose
   /// reverse no cavity quad has), none when it is not one or longer than kMaxCavityNodes.
-  std::optional<std::vector<std::uint32_t>> cavity_cycle(
-      const std::vector<std::uint32_t>& cavity) const {
+  std::optional<std::vector<std::uint32_t>> cavity_cycle(const std::vector<std::uint32_t>& cavity,
+                                                         std::size_t most = kMaxCavityNodes) const {
     // Its boundary: the directed edges whose reverse no cavity quad has, one cycle.
     std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
     for (std::uint32_t c : cavity)
@@ -441,7 +443,7 @@ class PatchRefill {
     for (const auto& [a, b] : edges)
       if (!std::binary_search(edges.begin(), edges.end(), std::make_pair(b, a)))
         border.emplace_back(a, b);
-    if (border.size() < 4 || border.size() > kMaxCavityNodes) return std::nullopt;
+    if (border.size() < 4 || border.size() > most) return std::nullopt;
     // A simple cycle: one edge out of every border node, all of them on one loop.
     for (std::size_t i = 1; i < border.size(); ++i)
       if (border[i].first == border[i - 1].first) return std::nullopt;
@@ -529,8 +531,9 @@ class PatchRefill {
 
   /// A re-fill of the cavity, when it raises the worst quad of it and of the quads round it.
   std::optional<Plan> plan_cavity(const std::vector<std::uint32_t>& cavity,
-                                  std::string& log) const {
-    const std::optional<std::vector<std::uint32_t>> found = cavity_cycle(cavity);
+                                  std::string& log,
+                                  std::size_t most = kMaxCavityNodes) const {
+    const std::optional<std::vector<std::uint32_t>> found = cavity_cycle(cavity, most);
     if (!found) return std::nullopt;
     const std::vector<std::uint32_t>& cycle = *found;
     // Its inner nodes go; none of them may be pinned.

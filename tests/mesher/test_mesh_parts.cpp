@@ -590,6 +590,14 @@ TEST_CASE("a large face whose structured fill is bad tries the unstructured temp
   check_three_poses(finer(cases_dir() + "/external/cgal_wheel_16_spokes.json", 2.0), 0.6);
 }
 
+TEST_CASE("a pole whose star has a long boundary is filled again", "[mesh][refill]") {
+  // cgal_wheel_16_spokes at 1.25 x its size: the 32 rails into the hub meet at its centre, a
+  // node of 32 quads with corners of 11.25 degrees (0.195). Its star's boundary has 64 nodes,
+  // over kMaxCavityNodes (48), so no cavity took it out; a pole's star may have up to
+  // kMaxPoleCavityNodes (96): 0.265.
+  check_three_poses(finer(cases_dir() + "/external/cgal_wheel_16_spokes.json", 0.8), 0.25);
+}
+
 TEST_CASE("rails converging on the axis a fraction of an element apart meet at one node",
           "[mesh][fan]") {
   // Arcs whose maximal disks are nearly their own circles (a 20 x 10 rectangle with arcs of
