@@ -52,6 +52,7 @@ enum class FillKind : std::uint8_t {
   Three,    ///< four sides, the two longer ones meeting: three grids round one inner node
   Lattice,  ///< split with inner coarse nodes on a square lattice: quads of the face's edge size
   Match,    ///< a graded triangulation inside, its triangles paired into quads
+  Sided,    ///< three or five corners: as many grids round one inner node
 };
 const char* to_string(FillKind kind);
 

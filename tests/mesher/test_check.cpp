@@ -523,3 +523,46 @@ TEST_CASE("cavity re-fill gives a boundary node that one quad meets flat a secon
     for (std::uint32_t n : e.nodes) used[n] = true;
   CHECK(std::count(used.begin(), used.end(), false) == 0);
 }
+
+TEST_CASE("the star of a pole of 32 quads is filled again though its boundary has 64 nodes",
+          "[check][refill]") {
+  // A disk (a 64-gon of radius 2) meshed by hand: ring A of 64 nodes, the even ones at radius
+  // 1 and the odd ones at 1.4 between them, 32 kites round the centre with corners of 11.25
+  // degrees there (0.195), and 64 quads from ring A to the boundary. The centre's star has 64
+  // boundary nodes, over kMaxCavityNodes (48); a pole's star may have kMaxPoleCavityNodes (96).
+  constexpr int n = 64;
+  RawPart raw;
+  std::vector<std::int64_t> loop;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2.0 * kPi * i / n;
+    raw.vertices.push_back({2.0 * std::cos(t), 2.0 * std::sin(t), 0.0});
+    loop.push_back(i);
+  }
+  raw.patches.push_back({std::string("disk"), {loop}});
+  const Part part = build_part(raw);
+  QuadMesh mesh;
+  mesh.nodes = raw.vertices;  // ring B: 0 .. n - 1
+  for (int i = 0; i < n; ++i) {
+    const double t = 2.0 * kPi * i / n, r = i % 2 == 0 ? 1.0 : 1.4;
+    mesh.nodes.push_back({r * std::cos(t), r * std::sin(t), 0.0});  // ring A: n .. 2n - 1
+  }
+  const auto centre = static_cast<std::uint32_t>(mesh.nodes.size());
+  mesh.nodes.push_back({0.0, 0.0, 0.0});
+  const auto b = [&](int i) { return static_cast<std::uint32_t>(i % n); };
+  const auto a = [&](int i) { return static_cast<std::uint32_t>(n + i % n); };
+  const auto quad = [&](std::array<std::uint32_t, 4> q) {
+    MeshElement e;
+    e.nodes = q;
+    e.patch = PatchId(0);
+    mesh.elements.push_back(e);
+  };
+  for (int k = 0; k < n / 2; ++k) quad({centre, a(2 * k), a(2 * k + 1), a(2 * k + 2)});
+  for (int i = 0; i < n; ++i) quad({a(i), b(i), b(i + 1), a(i + 1)});
+  REQUIRE(check_mesh(part, mesh).valid());
+  REQUIRE(summarize(part, mesh).measures[6].worst < 0.2);
+  CHECK(refill_cavities(part, mesh, 10) >= 1);
+  const MeshCheck check = check_mesh(part, mesh);
+  INFO(check.report());
+  CHECK(check.valid());
+  CHECK(summarize(part, mesh).measures[6].worst > 0.3);
+}

@@ -726,3 +726,29 @@ TEST_CASE("a large patch's sweeps run in blocks that read nothing another writes
   CHECK(std::memcmp(results[0].data(), results[1].data(), n * sizeof(Vec2)) == 0);
   CHECK(worst_quad(results[0], quads) > worst_quad(start, quads) + 0.1);
 }
+
+TEST_CASE("a wedge whose two long sides meet at the axis gets one quad at its apex",
+          "[fill][sided]") {
+  // A face of cgal_wheel_16_spokes' hub at 1.25 x its size (h = 0.589; its nodes as the
+  // mesher made them): a wedge of 22.5 degrees whose two long sides are one rail chain
+  // through the apex (8 + 8 edges), its outer side a rail of 4 edges between two boundary
+  // edges. No structured template reads it (the sides do not pair), and split put two quads
+  // at the apex (0.195: 32 such quads round the hub's centre). Three grids round one node
+  // (sided_fill) put one quad there, in every pose.
+  const Runs runs = {{{{0.0, -5.0}, {0.047726, -5.58805}}, {1}},
+                     {{{0.047726, -5.58805},
+                       {0.57118, -5.54556},
+                       {1.09463, -5.50308},
+                       {1.5945, -5.34201},
+                       {2.09436, -5.18094}},
+                      {1, 1, 1, 1}},
+                     {{{2.09436, -5.18094}, {1.91342, -4.6194}}, {1}},
+                     {{{1.91342, -4.6194}, {0.0, 0.0}, {0.0, -5.0}}, {8, 8}}};
+  in_every_pose(runs, FaceSide::Kind::Boundary, [&](const FaceInput& f, double, bool) {
+    REQUIRE(f.cycle.size() == 22);
+    const FaceMesh m = fill_face(f, "the wedge");
+    CHECK(std::string(to_string(m.kind)) == "sided");
+    check_fill(f, m);
+    CHECK(m.min_jacobian > 0.35);
+  });
+}

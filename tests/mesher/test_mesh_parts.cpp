@@ -1,5 +1,6 @@
 // The mesher on every part: valid all-quad meshes by quality.md (the checker is the judge),
 // the same mesh in every pose, the same bytes on every run.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <initializer_list>
@@ -590,12 +591,17 @@ TEST_CASE("a large face whose structured fill is bad tries the unstructured temp
   check_three_poses(finer(cases_dir() + "/external/cgal_wheel_16_spokes.json", 2.0), 0.6);
 }
 
-TEST_CASE("a pole whose star has a long boundary is filled again", "[mesh][refill]") {
-  // cgal_wheel_16_spokes at 1.25 x its size: the 32 rails into the hub meet at its centre, a
-  // node of 32 quads with corners of 11.25 degrees (0.195). Its star's boundary has 64 nodes,
-  // over kMaxCavityNodes (48), so no cavity took it out; a pole's star may have up to
-  // kMaxPoleCavityNodes (96): 0.265.
-  check_three_poses(finer(cases_dir() + "/external/cgal_wheel_16_spokes.json", 0.8), 0.25);
+TEST_CASE("a face of three corners is three grids round one node", "[mesh][face]") {
+  // cgal_wheel_16_spokes at 1.25 x its size: the hub is 16 wedges of 22.5 degrees whose two
+  // long sides are one rail chain through the centre. No structured template read them, and
+  // split put two quads at each apex: 32 quads of 11.25-degree corners round the centre
+  // (0.195), slivers along the wedges (taper <= 0.8 on 45.8% of the quads, skew >= 30 on
+  // 20.5%). Three grids round one node (sided_fill): one quad at each apex, 0.842.
+  for (const MeshPartResult& r :
+       check_three_poses(finer(cases_dir() + "/external/cgal_wheel_16_spokes.json", 0.8), 0.8))
+    CHECK(r.stats.by_template[static_cast<std::size_t>(
+              std::find(kTemplateNames.begin(), kTemplateNames.end(), std::string("sided")) -
+              kTemplateNames.begin())] > 0);
 }
 
 TEST_CASE("rails converging on the axis a fraction of an element apart meet at one node",

@@ -29,9 +29,9 @@ constexpr double kRefillBelowUniform = 0.7;
 constexpr double kRefillBelowAdaptive = 0.5;
 
 /// Names of the face templates, in mesher_detail::FillKind order (docs/mesher.md).
-constexpr std::array<const char*, 16> kTemplateNames = {
-    "grid",  "diamond", "quad", "ring",  "split",  "rows",  "cut",     "pairs",
-    "strip", "ogrid",   "arms", "taper", "reflex", "three", "lattice", "match"};
+constexpr std::array<const char*, 17> kTemplateNames = {
+    "grid",  "diamond", "quad",  "ring",   "split", "rows",    "cut",   "pairs", "strip",
+    "ogrid", "arms",    "taper", "reflex", "three", "lattice", "match", "sided"};
 
 /// What the quad stage did, for reports and tests.
 struct QuadStats {
