@@ -56,6 +56,13 @@ constexpr std::size_t kRefillParallelQuads = 500;
 constexpr std::uint32_t kNew = 0xffffffffu;
 /// Nodes of at least this many quads are poles: their star is a cavity of its own.
 constexpr std::size_t kPoleValence = 6;
+/// The pole pass also tries the cavities round a quad whose worst corner is a pinned node of
+/// that quad alone, at more than this (lone_flat): a boundary vertex on a nearly straight
+/// outline that one quad meets (sin 157.5 degrees = 0.383 on cgal_wheel_16_spokes at 0.8 x
+/// its size, four of them beyond the first pass's limit of attempts; with two quads the vertex
+/// has 0.98 at best). The pass tries no other quads (until session 28 it took the worst ones
+/// and tried the poles among them).
+constexpr double kLoneFlatAngle = 150.0 * kPi / 180.0;
 /// Regrid (regrid_plan): round an irregular node, its quads and then the quads at their nodes,
 /// out to kRegridRings rings of at most kRegridQuads quads, are its cavities (6 rings and 250
 /// quads: taper <= 0.8 a tenth lower on the sets for 10% more time, and more worst corners
@@ -104,14 +111,16 @@ class PatchRefill {
 
   /// Tries a re-fill round every quad below `below_`, worst first; after the first pass,
   /// only round quads near a node that the pass before moved or made. Returns the count kept.
-  /// `poles`: the pass after the others, which tries the poles' cavities only (pole_plan), round
-  /// every quad still below `below_`.
+  /// `poles`: the pass after the others, which tries, of the quads still below `below_`, those
+  /// whose worst corner is at a pole (pole_plan: its star) or is a lone flat corner (lone_flat:
+  /// the cavities of the first passes, which their count limit may not have reached).
   std::size_t run(int pass, bool poles = false) {
     std::vector<std::pair<double, std::uint32_t>> bad;
     for (std::uint32_t q = 0; q < pq_.quads.size(); ++q) {
       if (!alive_[q]) continue;
       const double j = jacobian(pq_.quads[q]);
-      if (j < below_ && (pass == 0 || poles || near_change(q, pass - 1)))
+      if (j < below_ && (pass == 0 || poles || near_change(q, pass - 1)) &&
+          (!poles || pole_of(q) != kNew || lone_flat(q)))
         bad.emplace_back(settled(j), q);
     }
     std::sort(bad.begin(), bad.end());
@@ -307,7 +316,7 @@ class PatchRefill {
     Attempt t;
     t.reads = reach(q);
     if (!alive_[q] || jacobian(pq_.quads[q]) >= below_) return t;
-    if (poles) {
+    if (poles && !lone_flat(q)) {
       t.plan = pole_plan(q, t.log);
       return t;
     }
@@ -382,23 +391,47 @@ class PatchRefill {
   /// takes that node out; the quads round it, alone and then with the quads at their nodes,
   /// filled again can (arcs__scallop12: 0.499 -> 0.829).
   std::optional<Plan> pole_plan(std::uint32_t q, std::string& log) const {
+    const std::uint32_t pole = pole_of(q);
+    if (pole == kNew) return std::nullopt;
+    std::vector<std::uint32_t> star = around_[pole];
+    std::sort(star.begin(), star.end());
+    if (std::optional<Plan> plan = plan_cavity(star, log, kMaxPoleCavityNodes)) return plan;
+    return plan_cavity(quads_at_nodes_of(star), log, kMaxPoleCavityNodes);
+  }
+
+  /// The corner of q with the least scaled Jacobian (settled: of two equal but for rounding,
+  /// the first in every pose).
+  std::size_t worst_corner(std::uint32_t q) const {
     const Quad& x = pq_.quads[q];
-    std::uint32_t pole = kNew;
+    std::size_t at = 0;
     double worst = std::numeric_limits<double>::infinity();
-    // Settled: of two corners equal but for rounding, the first in every pose.
     for (std::size_t k = 0; k < 4; ++k) {
       const double c = settled(
           corner_jacobian(pq_.pos[x[k]], pq_.pos[x[(k + 1) % 4]], pq_.pos[x[(k + 3) % 4]]));
       if (c < worst) {
         worst = c;
-        pole = x[k];
+        at = k;
       }
     }
-    if (pq_.fixed[pole] || around_[pole].size() < kPoleValence) return std::nullopt;
-    std::vector<std::uint32_t> star = around_[pole];
-    std::sort(star.begin(), star.end());
-    if (std::optional<Plan> plan = plan_cavity(star, log, kMaxPoleCavityNodes)) return plan;
-    return plan_cavity(quads_at_nodes_of(star), log, kMaxPoleCavityNodes);
+    return at;
+  }
+
+  /// The node of q's worst corner when it is a pole (a free node of kPoleValence quads or
+  /// more), else kNew.
+  std::uint32_t pole_of(std::uint32_t q) const {
+    const std::uint32_t pole = pq_.quads[q][worst_corner(q)];
+    return pq_.fixed[pole] || around_[pole].size() < kPoleValence ? kNew : pole;
+  }
+
+  /// Whether q's worst corner is a pinned node that q alone meets, at more than
+  /// kLoneFlatAngle: a boundary vertex on a nearly straight outline that no other quad shares.
+  bool lone_flat(std::uint32_t q) const {
+    const Quad& x = pq_.quads[q];
+    const std::size_t k = worst_corner(q);
+    if (!pq_.fixed[x[k]] || around_[x[k]].size() != 1) return false;
+    const Vec2 e1 = pq_.pos[x[(k + 1) % 4]] - pq_.pos[x[k]],
+               e0 = pq_.pos[x[(k + 3) % 4]] - pq_.pos[x[k]];
+    return std::atan2(cross(e1, e0), dot(e1, e0)) > kLoneFlatAngle;
   }
 
   /// What an attempt round q reads: the nodes of the quads at the nodes of the quads at the

@@ -917,3 +917,14 @@ TEST_CASE("rails crowding onto a small round hole are thinned to 0.65 h apart", 
     CHECK(r.quality.measures[2].bad_percent < 15.0);
   }
 }
+
+TEST_CASE("a boundary vertex that one quad meets flat is filled round again in the last pass",
+          "[mesh][refill]") {
+  // cgal_wheel_16_spokes at 0.8 x its size (0.377124): four spoke tips kept a vertex of
+  // 157.5 degrees as one quad's corner (0.383); the first re-fill pass tries the worst 72 of
+  // its 252 bad quads, and they came 80th to 83rd. The last pass tries the cavities round such
+  // lone flat corners (lone_flat): 0.789.
+  RawPart raw = read_brep_json(cases_dir() + "/external/cgal_wheel_16_spokes.json");
+  raw.mesh.size = 0.377124;
+  check_three_poses(raw, 0.7);
+}
