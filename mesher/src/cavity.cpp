@@ -61,8 +61,9 @@ constexpr std::size_t kPoleValence = 6;
 /// outline that one quad meets (sin 157.5 degrees = 0.383 on cgal_wheel_16_spokes at 0.8 x
 /// its size, four of them beyond the first pass's limit of attempts; with two quads the vertex
 /// has 0.98 at best). The pass tries no other quads (until session 28 it took the worst ones
-/// and tried the poles among them).
-constexpr double kLoneFlatAngle = 150.0 * kPi / 180.0;
+/// and tried the poles among them). Off round values: a regular 12-gon's corners are 150
+/// degrees exactly, and a threshold there would read them one way or the other by the pose.
+constexpr double kLoneFlatAngle = 152.5 * kPi / 180.0;
 /// Regrid (regrid_plan): round an irregular node, its quads and then the quads at their nodes,
 /// out to kRegridRings rings of at most kRegridQuads quads, are its cavities (6 rings and 250
 /// quads: taper <= 0.8 a tenth lower on the sets for 10% more time, and more worst corners
