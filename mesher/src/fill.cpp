@@ -1015,15 +1015,23 @@ double ccw_angle(Vec2 from, Vec2 to) {
 /// (cap1 from the first corner, then rail1, cap2, rail2), `rotate` sides later.
 constexpr double kCornerAngle = 150.0 * kPi / 180.0;
 
-std::optional<Strip> corner_strip(const std::vector<Vec2>& poly, std::size_t rotate) {
-  const auto n = static_cast<std::uint32_t>(poly.size());
+/// The corners of a polygon (interior angle below kCornerAngle), in order; none when a node
+/// is reflex beyond 200 degrees. How corner_strip and fill_sided read a face.
+std::optional<std::vector<std::uint32_t>> polygon_corners(const std::vector<Vec2>& poly) {
   std::vector<std::uint32_t> corners;
-  for (std::uint32_t k = 0; k < n; ++k) {
+  for (std::uint32_t k = 0; k < poly.size(); ++k) {
     const double a = interior_angle(poly, k);
     if (a > 200.0 * kPi / 180.0) return std::nullopt;
     if (a < kCornerAngle) corners.push_back(k);
   }
-  if (corners.size() != 4) return std::nullopt;
+  return corners;
+}
+
+std::optional<Strip> corner_strip(const std::vector<Vec2>& poly, std::size_t rotate) {
+  const auto n = static_cast<std::uint32_t>(poly.size());
+  const std::optional<std::vector<std::uint32_t>> found = polygon_corners(poly);
+  if (!found || found->size() != 4) return std::nullopt;
+  const std::vector<std::uint32_t>& corners = *found;
   std::array<std::vector<std::uint32_t>, 4> side;
   for (std::size_t c = 0; c < 4; ++c) {
     const std::uint32_t from = corners[(c + rotate) % 4], to = corners[(c + rotate + 1) % 4];
@@ -2163,27 +2171,18 @@ std::optional<FaceMesh> fill_reflex(const FaceInput& face, int depth) {
   return best;
 }
 
-/// Sided (session 28): a face of three or five corners (interior angle below kCornerAngle,
-/// none above 200 degrees, as corner_strip reads them) is that many grids round one inner
-/// node (sided_fill, the regrid's), placed harmonically (kSidedSweeps) and relaxed. A wedge
-/// whose two long sides meet at the axis gets one quad at its apex: cgal_wheel_16_spokes'
-/// hub at 1.25 x its size is 32 such wedges of 11.25 degrees, and split put two quads at
-/// each apex (0.195), 64 round the hub's centre.
+/// Sided (session 28): a face of three or five corners (polygon_corners, as corner_strip
+/// reads them) is that many grids round one inner node (sided_fill, the regrid's), placed
+/// harmonically (kSidedSweeps) and relaxed. A wedge whose two long sides meet at the axis gets
+/// one quad at its apex: cgal_wheel_16_spokes' hub at 1.25 x its size is 16 such wedges of
+/// 22.5 degrees, and split put two quads at each apex (0.195), 32 round the hub's centre.
 constexpr int kSidedSweeps = 100;
 
 std::optional<FaceMesh> fill_sided(const FaceInput& face) {
-  const std::size_t n = face.cycle.size();
-  std::vector<int> turn(n, 0);
-  int corners = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const double a = interior_angle(face.cycle, k);
-    if (a > 200.0 * kPi / 180.0) return std::nullopt;
-    if (a < kCornerAngle) {
-      turn[k] = 1;
-      ++corners;
-    }
-  }
-  if (corners != 3 && corners != 5) return std::nullopt;
+  const std::optional<std::vector<std::uint32_t>> corners = polygon_corners(face.cycle);
+  if (!corners || (corners->size() != 3 && corners->size() != 5)) return std::nullopt;
+  std::vector<int> turn(face.cycle.size(), 0);
+  for (std::uint32_t k : *corners) turn[k] = 1;
   std::optional<TurnFill> fill = sided_fill(turn);
   if (!fill) return std::nullopt;
   place_harmonic(*fill, face.cycle, kSidedSweeps);
