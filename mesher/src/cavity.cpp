@@ -317,9 +317,15 @@ class PatchRefill {
     Attempt t;
     t.reads = reach(q);
     if (!alive_[q] || jacobian(pq_.quads[q]) >= below_) return t;
-    if (poles && !lone_flat(q)) {
-      t.plan = pole_plan(q, t.log);
-      return t;
+    if (poles) {
+      // A pole's star; a lone flat corner (never at a pole: that node is pinned) goes on to
+      // the cavities below; any other quad the pass took has become neither since.
+      const std::uint32_t pole = pole_of(q);
+      if (pole != kNew) {
+        t.plan = pole_plan(pole, t.log);
+        return t;
+      }
+      if (!lone_flat(q)) return t;
     }
     // The quads across its edges first (the smallest change), then those at its nodes, then
     // those at the nodes of those.
@@ -374,16 +380,9 @@ class PatchRefill {
       looked = closed;
       t.plan = regrid_plan(closed, t.log);
     }
-    thread_local Marks read;
-    read.clear(pq_.pos.size());
-    read.insert(v);
-    for (std::uint32_t q : quads_at_nodes_of(looked))
-      for (std::uint32_t u : pq_.quads[q])
-        if (!read.contains(u)) {
-          read.insert(u);
-          t.reads.push_back(u);
-        }
-    std::sort(t.reads.begin(), t.reads.end());
+    t.reads = nodes_of(quads_at_nodes_of(looked));
+    if (!std::binary_search(t.reads.begin(), t.reads.end(), v))
+      t.reads.insert(std::lower_bound(t.reads.begin(), t.reads.end(), v), v);
     return t;
   }
 
@@ -391,9 +390,7 @@ class PatchRefill {
   /// corner there narrow (12 sectors of 30 degrees: 0.5 at best). No cavity round q alone
   /// takes that node out; the quads round it, alone and then with the quads at their nodes,
   /// filled again can (arcs__scallop12: 0.499 -> 0.829).
-  std::optional<Plan> pole_plan(std::uint32_t q, std::string& log) const {
-    const std::uint32_t pole = pole_of(q);
-    if (pole == kNew) return std::nullopt;
+  std::optional<Plan> pole_plan(std::uint32_t pole, std::string& log) const {
     std::vector<std::uint32_t> star = around_[pole];
     std::sort(star.begin(), star.end());
     if (std::optional<Plan> plan = plan_cavity(star, log, kMaxPoleCavityNodes)) return plan;
@@ -430,35 +427,29 @@ class PatchRefill {
     const Quad& x = pq_.quads[q];
     const std::size_t k = worst_corner(q);
     if (!pq_.fixed[x[k]] || around_[x[k]].size() != 1) return false;
-    const Vec2 e1 = pq_.pos[x[(k + 1) % 4]] - pq_.pos[x[k]],
-               e0 = pq_.pos[x[(k + 3) % 4]] - pq_.pos[x[k]];
-    return std::atan2(cross(e1, e0), dot(e1, e0)) > kLoneFlatAngle;
+    const double a =
+        interior_angle({pq_.pos[x[0]], pq_.pos[x[1]], pq_.pos[x[2]], pq_.pos[x[3]]}, k);
+    return a > kLoneFlatAngle && a <= kPi;  // a reflex corner (an inverted quad) is not flat
   }
 
   /// What an attempt round q reads: the nodes of the quads at the nodes of the quads at the
   /// nodes of... q, three rings out (its largest cavity is two rings; the quads round a
   /// cavity, whose nodes the relaxation reads, one more).
   std::vector<std::uint32_t> reach(std::uint32_t q) const {
+    return nodes_of(quads_at_nodes_of(cavity_of(q, 2)));
+  }
+
+  /// The nodes of `quads`, sorted, each once.
+  std::vector<std::uint32_t> nodes_of(const std::vector<std::uint32_t>& quads) const {
     thread_local Marks seen;
     seen.clear(pq_.pos.size());
     std::vector<std::uint32_t> nodes;
-    for (std::uint32_t v : pq_.quads[q])
-      if (!seen.contains(v)) {
-        seen.insert(v);
-        nodes.push_back(v);
-      }
-    std::size_t begin = 0;
-    for (int ring = 0; ring < 3; ++ring) {
-      const std::size_t end = nodes.size();
-      for (std::size_t i = begin; i < end; ++i)
-        for (std::uint32_t o : around_[nodes[i]])
-          for (std::uint32_t u : pq_.quads[o])
-            if (!seen.contains(u)) {
-              seen.insert(u);
-              nodes.push_back(u);
-            }
-      begin = end;
-    }
+    for (std::uint32_t r : quads)
+      for (std::uint32_t v : pq_.quads[r])
+        if (!seen.contains(v)) {
+          seen.insert(v);
+          nodes.push_back(v);
+        }
     std::sort(nodes.begin(), nodes.end());
     return nodes;
   }
