@@ -103,12 +103,16 @@ constexpr double kMaxWedgeFeet = 0.5;
 constexpr double kThinWedgeAngle = 10.0 * kPi / 180.0;
 /// Round fans (drop_narrow_fans): at least kRoundFanRails rails at one MA point, at most
 /// kRoundFanOpenGaps wedges between them not capped by plain boundary; they are thinned to
-/// wedges of at most about kRoundFanAngle (thin_round_fan). Four of the 217 generated parts
-/// have round fans; every angle from 30 to 50 degrees improved all four, 40 and 45 the most
-/// evenly (30 and 35 left a keyhole's round tip at 0.256 and 0.540, 40: 0.601).
+/// wedges of at most kRoundFanAngle (thin_round_fan): a quarter arc's run (90 degrees) is one
+/// wedge, whose apex is one quad's corner; a half arc's two. Off round values, so that no
+/// run's angle sits on a multiple of it. Session 8 chose 40 degrees among 30 to 50 (30 and 35
+/// left a keyhole's round tip at 0.256 and 0.540); a fillet's run of 74 degrees then kept two
+/// wedges of 37 degrees, each split into kites (a rounded rectangle with fillets of 4.5 h:
+/// taper <= 0.8 40.9%, worst 0.700); as one wedge 18.8% and 0.829 (docs/mesher.md, "Round
+/// fans").
 constexpr std::size_t kRoundFanRails = 6;
 constexpr std::size_t kRoundFanOpenGaps = 2;
-constexpr double kRoundFanAngle = 40.0 * kPi / 180.0;
+constexpr double kRoundFanAngle = 100.0 * kPi / 180.0;
 /// drop_crowded_feet: neighbouring rail feet on a concave arc closer than this x the element
 /// size are not both kept; gaps equal within kFootTie x the part's size are alike.
 constexpr double kMinArcFoot = 0.65;
