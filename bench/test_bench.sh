@@ -41,4 +41,22 @@ for part in "$CASES/t_junction.json" "$CASES/closed_cube.json" "$CASES/plate_wit
   mesh "$part" "$TMP/$name.geo"
   "$LAYTRACKS" quality "$part" "$TMP/$name.msh" --quiet
 done
+# gmsh_compare.py and generated_table.py (bench/run-generated.sh's summing up) on one part:
+# every measure's counts (ours better, equal, Gmsh better) add up to the parts compared.
+"$BENCH" "$CASES/rect_10x4.json" --json "$TMP/rect_10x4.json" > /dev/null
+python3 "$HERE/gmsh_compare.py" "$TMP/rect_10x4.json" --laytracks "$LAYTRACKS" --work "$TMP/gw" \
+  -o "$TMP/rect_10x4-gmsh.json" 2> /dev/null
+python3 "$HERE/generated_table.py" "$TMP/rect_10x4-gmsh.json" > "$TMP/table.md"
+python3 - "$TMP/table.md" << 'EOF'
+import re, sys
+t = open(sys.argv[1]).read()
+assert t.startswith("1 parts; ours valid on 1; Gmsh valid on 1"), t
+n = int(re.search(r"on the (\d+) parts at a similar count", t).group(1))
+rows = [l for l in t.splitlines() if l.startswith("| ") and "measure" not in l]
+assert len(rows) == 4, rows
+for l in rows:
+    c = [int(x) for x in l.split("|")[2:5]]
+    assert sum(c) == n, l
+assert "Whole commands (best of 3): ours faster on" in t, t
+EOF
 echo "bench tools: ok"
