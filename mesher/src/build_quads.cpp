@@ -46,8 +46,8 @@ constexpr double kSharedFaceSlack = 1e-6;
 constexpr double kSplitPiece = 2.0;
 /// Lengths are compared with h this much below their exact value (relative), so that a length
 /// of exactly 1.5 h gives the same count in every pose, whatever its rounding; the same slack
-/// (x h) on the fan rules' length bounds (until session 29 the narrow wedges' bound on their
-/// feet: a hole's corner exactly 0.5 h from another's, holes__rect_near_g0.5).
+/// (x h) on the fan rules' length bounds (a hole's corner exactly kMaxWedgeFeet h from
+/// another's: holes__rect_near_g0.5).
 constexpr double kRoundingSlack = 1e-7;
 /// A G-CUT-VERT within this x the part size of another break of its edge (or of the edge's
 /// end) is that node: ten times above the checker's closest allowed nodes.
@@ -91,12 +91,23 @@ constexpr double kAngleTie = 1e-9;
 /// Adaptive mode: the track widths beside a rail's foot count in Eq. (2) within this factor
 /// of the width law's there.
 constexpr double kFootWidthBound = 2.0;
-/// The same at an MA point, whatever the rails' feet: two rails meeting there closer than this
-/// bound a wedge whose apex quad is as thin as its angle. 15 degrees for feet closer than
-/// half an element until session 29, 10 degrees for feet any distance apart (session 15);
-/// one bound of 20 degrees since: of 402 set meshes 38 changed, worst corner higher on 11
-/// (adaptive cgal_complex_1 0.193 -> 0.489), lower on none (docs/mesher.md, "Narrow wedges").
-constexpr double kMinWedgeAngle = 20.0 * kPi / 180.0;
+/// The same at an MA point, for two rails whose feet are closer than kMaxWedgeFeet x h: the
+/// wedge between them is less than half an element wide, its apex quad as thin as its angle
+/// (15 degrees: cgal_complex_1 0.18 -> 0.34 against 10 degrees; taken alone, 10 gave 0.18).
+constexpr double kMinWedgeAngle = 15.0 * kPi / 180.0;
+constexpr double kMaxWedgeFeet = 0.5;
+/// A wedge at an MA point thinner than this goes whatever its feet (session 15): long rails
+/// converging at the axis from far-apart feet (cgal_wiggly_03_cgal's teeth, 1-2 degrees apart)
+/// made wedges whose apex quads were 0.03; the face their dropped rail leaves is wide, and the
+/// lattice template fills such faces with quads of the edge size.
+constexpr double kThinWedgeAngle = 10.0 * kPi / 180.0;
+/// Adaptive mode (session 29): at an MA point two rails closer than this lose one, whatever
+/// their feet (h there is the least track width, so the feet are nearly always "far"):
+/// adaptive cgal_complex_1 0.193 -> 0.489. In uniform mode the same bound raised 10 set
+/// meshes' worst corners and lowered none, but broke the fan at cgal_wiggly_03_cgal's axis
+/// end into bent slivers (aspect >= 5 0.10% -> 0.32%, taper 15.8% -> 19.0%; docs/mesher.md,
+/// "Narrow wedges").
+constexpr double kAdaptiveWedgeAngle = 20.0 * kPi / 180.0;
 /// Round fans (drop_narrow_fans): at least kRoundFanRails rails at one MA point, at most
 /// kRoundFanOpenGaps wedges between them not capped by plain boundary; they are thinned to
 /// wedges of at most kRoundFanAngle (thin_round_fan): a quarter arc's run (90 degrees) is one
@@ -847,7 +858,8 @@ class QuadBuilder {
           reflex = interior > kReflexFanCorner;
         }
       }
-      const double limit = at_ma ? kMinWedgeAngle : reflex ? kMinReflexFanAngle : kMinFanAngle;
+      const double wedge = law_ ? kAdaptiveWedgeAngle : kMinWedgeAngle;
+      const double limit = at_ma ? wedge : reflex ? kMinReflexFanAngle : kMinFanAngle;
       const auto pair_id = [&](std::size_t k) {
         return std::min(g.edges[rails[k]].seg, g.edges[rails[(k + 1) % rails.size()]].seg);
       };
@@ -856,6 +868,14 @@ class QuadBuilder {
         std::size_t pick = rails.size();
         for (std::size_t k = 0; k < rails.size(); ++k) {
           const double angle = gap(k);
+          // At an MA point only a wedge whose feet are closer than kMaxWedgeFeet x h, or one
+          // thinner than kThinWedgeAngle: a wider one holds quads of its own, and merging it
+          // made long fans (cgal_wiggly_03_cgal, before the lattice template). Adaptive mode:
+          // any wedge below kAdaptiveWedgeAngle.
+          if (at_ma && !law_ && angle >= kThinWedgeAngle &&
+              distance(dir(rails[k]), dir(rails[(k + 1) % rails.size()])) >
+                  (kMaxWedgeFeet + kRoundingSlack) * h_)
+            continue;
           // At a reflex corner the wider limit holds for short rails only: dropping a long
           // one takes a long chain, and wide faces far from the corner, with it.
           if (reflex && (norm(dir(rails[k])) > (kShortFanRail + kRoundingSlack) * h_ ||
