@@ -11,6 +11,10 @@ import json
 import os
 import sys
 
+from bench_table import measures  # (worst scaled Jacobian, skew %, aspect %, taper %)
+
+KEYS = ("sj", "skew", "aspect", "taper")
+
 
 def load(path):
     d = json.load(open(path))
@@ -19,18 +23,11 @@ def load(path):
     name = os.path.basename(path)[: -len("-gmsh.json")]
     if ours.get("status") != "ok":
         return name, None
-    om = ours["quality"]["measures"]
-    r = {"quads": ours["quads"], "sj": om["scaled_jacobian"]["worst"],
-         "skew": om["skew_deg"]["bad_percent"], "aspect": om["aspect_ratio"]["bad_percent"],
-         "taper": om["taper"]["bad_percent"], "gmsh": None}
+    r = dict(zip(KEYS, measures(ours["quality"])), quads=ours["quads"], gmsh=None)
     if gmsh.get("status") == "ok" and gmsh.get("valid"):
-        gm = gmsh["quality"]["measures"]
         c = gmsh.get("commands", {})
-        r["gmsh"] = {"quads": gmsh["quads"], "sj": gm["scaled_jacobian"]["worst"],
-                     "skew": gm["skew_deg"]["bad_percent"],
-                     "aspect": gm["aspect_ratio"]["bad_percent"],
-                     "taper": gm["taper"]["bad_percent"],
-                     "ours_s": c.get("ours"), "gmsh_s": c.get("gmsh")}
+        r["gmsh"] = dict(zip(KEYS, measures(gmsh["quality"])), quads=gmsh["quads"],
+                         ours_s=c.get("ours"), gmsh_s=c.get("gmsh"))
     elif gmsh.get("status") == "ok":
         r["gmsh_invalid"] = gmsh.get("failed_rules")
     return name, r
@@ -81,7 +78,7 @@ def main():
                                               for _, n, r in slower) or "none"))
     print()
     print("Where Gmsh is ahead, by the most first (ours / Gmsh's):")
-    for key in ("sj", "skew", "aspect", "taper"):
+    for key in KEYS:
         for d, n, r in sorted(behind.get(key, []), key=lambda t: -t[0])[:8]:
             print("- %s %s: %.3f / %.3f (%d / %d quads)" %
                   (n, key, r[key], r["gmsh"][key], r["quads"], r["gmsh"]["quads"]))
