@@ -47,7 +47,7 @@ constexpr double kSplitPiece = 2.0;
 /// Lengths are compared with h this much below their exact value (relative), so that a length
 /// of exactly 1.5 h gives the same count in every pose, whatever its rounding; the same slack
 /// (x h) on the fan rules' length bounds (a hole's corner exactly kMaxWedgeFeet h from
-/// another's: holes__rect_near_g0.5).
+/// another's, when that was 0.5: holes__rect_near_g0.5).
 constexpr double kRoundingSlack = 1e-7;
 /// A G-CUT-VERT within this x the part size of another break of its edge (or of the edge's
 /// end) is that node: ten times above the checker's closest allowed nodes.
@@ -91,23 +91,25 @@ constexpr double kAngleTie = 1e-9;
 /// Adaptive mode: the track widths beside a rail's foot count in Eq. (2) within this factor
 /// of the width law's there.
 constexpr double kFootWidthBound = 2.0;
-/// The same at an MA point, for two rails whose feet are closer than kMaxWedgeFeet x h: the
-/// wedge between them is less than half an element wide, its apex quad as thin as its angle
-/// (15 degrees: cgal_complex_1 0.18 -> 0.34 against 10 degrees; taken alone, 10 gave 0.18).
-constexpr double kMinWedgeAngle = 15.0 * kPi / 180.0;
-constexpr double kMaxWedgeFeet = 0.5;
+/// The same at an MA point: two rails closer than kMinWedgeAngle whose feet are closer than
+/// kMaxWedgeFeet x h bound a wedge that is one column of quads, each narrowing to the apex,
+/// whose apex quad is as thin as its angle. Session 4 chose 15 degrees and half an element
+/// (cgal_complex_1 0.18 -> 0.34 against 10 degrees). Session 30: 20 degrees and 1.25 h, so
+/// that a fillet's fan of short rails (4 h long, feet h apart, 14.6 or 18.4 degrees) loses
+/// every other rail: of the 402 set meshes 25 changed, worst corner higher on 10
+/// (holes__fillets 0.751 -> 0.862, cbracket__s7 0.750 -> 0.793), lower on 1 by 0.009; the
+/// wiggly's long converging rails (feet 1.9-3.7 h apart) keep theirs. Without the bound on
+/// the feet (session 29) they were thinned too, into bent slivers (aspect >= 5 0.10% -> 0.32%).
+constexpr double kMinWedgeAngle = 20.0 * kPi / 180.0;
+constexpr double kMaxWedgeFeet = 1.25;
 /// A wedge at an MA point thinner than this goes whatever its feet (session 15): long rails
 /// converging at the axis from far-apart feet (cgal_wiggly_03_cgal's teeth, 1-2 degrees apart)
 /// made wedges whose apex quads were 0.03; the face their dropped rail leaves is wide, and the
 /// lattice template fills such faces with quads of the edge size.
 constexpr double kThinWedgeAngle = 10.0 * kPi / 180.0;
-/// Adaptive mode (session 29): at an MA point two rails closer than this lose one, whatever
-/// their feet (h there is the least track width, so the feet are nearly always "far"):
-/// adaptive cgal_complex_1 0.193 -> 0.489. In uniform mode the same bound raised 10 set
-/// meshes' worst corners and lowered none, but broke the fan at cgal_wiggly_03_cgal's axis
-/// end into bent slivers (aspect >= 5 0.10% -> 0.32%, taper 15.8% -> 19.0%; docs/mesher.md,
-/// "Narrow wedges").
-constexpr double kAdaptiveWedgeAngle = 20.0 * kPi / 180.0;
+/// Adaptive mode (session 29): any wedge at an MA point below kMinWedgeAngle goes, whatever
+/// its feet (h there is the least track width, so the feet are nearly always "far"):
+/// adaptive cgal_complex_1 0.193 -> 0.489.
 /// Round fans (drop_narrow_fans): at least kRoundFanRails rails at one MA point, at most
 /// kRoundFanOpenGaps wedges between them not capped by plain boundary; they are thinned to
 /// wedges of at most kRoundFanAngle (thin_round_fan): a quarter arc's run (90 degrees) is one
@@ -858,8 +860,7 @@ class QuadBuilder {
           reflex = interior > kReflexFanCorner;
         }
       }
-      const double wedge = law_ ? kAdaptiveWedgeAngle : kMinWedgeAngle;
-      const double limit = at_ma ? wedge : reflex ? kMinReflexFanAngle : kMinFanAngle;
+      const double limit = at_ma ? kMinWedgeAngle : reflex ? kMinReflexFanAngle : kMinFanAngle;
       const auto pair_id = [&](std::size_t k) {
         return std::min(g.edges[rails[k]].seg, g.edges[rails[(k + 1) % rails.size()]].seg);
       };
@@ -871,7 +872,7 @@ class QuadBuilder {
           // At an MA point only a wedge whose feet are closer than kMaxWedgeFeet x h, or one
           // thinner than kThinWedgeAngle: a wider one holds quads of its own, and merging it
           // made long fans (cgal_wiggly_03_cgal, before the lattice template). Adaptive mode:
-          // any wedge below kAdaptiveWedgeAngle.
+          // any wedge below kMinWedgeAngle.
           if (at_ma && !law_ && angle >= kThinWedgeAngle &&
               distance(dir(rails[k]), dir(rails[(k + 1) % rails.size()])) >
                   (kMaxWedgeFeet + kRoundingSlack) * h_)

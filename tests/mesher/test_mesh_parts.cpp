@@ -669,11 +669,22 @@ TEST_CASE("a wedge at the axis thinner than 10 degrees goes whatever its feet", 
   CHECK(a.quality.measures[0].bad_percent < 12.0);  // skew >= 30
 }
 
+TEST_CASE("a fillet's fan of short rails at the axis is thinned below 20 degrees",
+          "[mesh][wedge]") {
+  // Corner fillets of radius 4 h (a 40 x 20 plate) and 3 h (a folded bracket of the stress
+  // run's composites): the axis point at each fillet's end meets five or four rails 4 h or 3 h
+  // long, 14.6 or 18.4 degrees apart, their feet an element apart; each wedge was one column
+  // of quads narrowing to its apex: worst 0.751 and 0.750. With kMinWedgeAngle 20 degrees
+  // and kMaxWedgeFeet 1.25 h every other rail goes: 0.862 and 0.793.
+  check_test_parts({{"plate_fillets_r4.json", 0.84}, {"bracket_fillets_r3.json", 0.78}},
+                   [](const MeshPartResult& r) { return r.stats.narrow_fans > 0; });
+}
+
 TEST_CASE("adaptive: a wedge at the axis thinner than 20 degrees goes whatever its feet",
           "[mesh][wedge]") {
   // Adaptive cgal_complex_1: two rails 15-20 degrees apart at an axis point, their feet far
   // apart (adaptive h is the least track width), bounded a wedge whose apex quad stayed at
-  // 0.193; with kAdaptiveWedgeAngle, 0.489.
+  // 0.193; with every wedge below kMinWedgeAngle (20 degrees) thinned, 0.489.
   RawPart complex = read_brep_json(cases_dir() + "/external/cgal_complex_1.json");
   complex.mesh.mode = MeshMode::Adaptive;
   check_three_poses(complex, 0.45);
@@ -801,7 +812,7 @@ TEST_CASE("ties at the rules' bounds and in symmetric parts are read alike in ev
           "[mesh][pose]") {
   // Parts of the stress run (scripts/stress/gen.py) whose quad count depended on the pose, with
   // the poses (turned and moved, scaled) where it did, as the stress run wrote them:
-  // - holes_gap_half: two square holes exactly kMaxWedgeFeet = 0.5 h apart (606 or 604);
+  // - holes_gap_half: two square holes exactly 0.5 h apart, then kMaxWedgeFeet (606 or 604);
   // - hole_tiny: a plate with a hole of 0.1, symmetric: a boundary node's fan of rails as long
   //   as each other lost one rail or its mirror image (829 or 818 after the re-fill);
   // - cube_octagon_holes: regular octagons in the faces of a cube: a point of a CUT-SEG mapped
