@@ -4,12 +4,19 @@
 // Choices, measured (see docs/medial.md):
 // - filtered traits without intersections on EPICK with Field_with_sqrt_tag: exact predicates
 //   (interval filter, Gmpq fallback), so the topology is decided exactly on the input doubles;
+// - Voronoi vertex positions from the same formulas in plain doubles, never the filtered
+//   construction: its exact path divided by zero in GMP (SIGFPE, the process dies) on nearly
+//   collinear runs of corners. refine_vertex() recomputes every position from its sites anyway.
+//   (CORE::Expr as the exact kernel avoided the crash too, and its predicates were 1.6x to 1.9x
+//   faster, but CORE appends warnings to a file "Core_Diagnostics" in the working directory,
+//   and calls exit(1) when it cannot open it or meets a zero divisor: not for a library.);
 // - points are inserted spatially sorted, then the segments in a shuffled order (in polygon
 //   order a 20k-segment star took 17 s, shuffled 0.7 s). The shuffle uses a fixed seed and our
 //   own Fisher-Yates, so the result is the same on every run and every platform.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Segment_Delaunay_graph_2.h>
 #include <CGAL/Segment_Delaunay_graph_filtered_traits_2.h>
+#include <CGAL/Segment_Delaunay_graph_traits_2.h>
 #include <CGAL/Spatial_sort_traits_adapter_2.h>
 #include <CGAL/spatial_sort.h>
 
@@ -30,6 +37,9 @@ using Gt =
     CGAL::Segment_Delaunay_graph_filtered_traits_without_intersections_2<K,
                                                                          CGAL::Field_with_sqrt_tag>;
 using Sdg = CGAL::Segment_Delaunay_graph_2<Gt>;
+// The same construction in plain doubles, for the Voronoi vertex positions (see collect()).
+using DoubleGt =
+    CGAL::Segment_Delaunay_graph_traits_without_intersections_2<K, CGAL::Field_with_sqrt_tag>;
 using Point = K::Point_2;
 
 Point to_cgal(Vec2 p) { return Point(p.x, p.y); }
@@ -154,7 +164,13 @@ class Builder {
     std::unordered_map<const void*, std::uint32_t> face_index;
     for (auto f = sdg_.finite_faces_begin(); f != sdg_.finite_faces_end(); ++f) {
       VoronoiVertex vv;
-      const Point p = sdg_.primal(f);
+      // Not sdg_.primal(f): its exact fallback (Gmpq, ring-type formulas) divided by zero
+      // inside GMP, which raises SIGFPE and kills the process, on grid outlines rotated in 3D
+      // (tests/data/parts/grid_outline_*.json). The position is only a first guess that
+      // refine_vertex() recomputes from the three sites; where the doubles are far off it
+      // picks the right root without it.
+      const Point p =
+          construct_vertex_(f->vertex(0)->site(), f->vertex(1)->site(), f->vertex(2)->site());
       vv.position = {CGAL::to_double(p.x()), CGAL::to_double(p.y())};
       for (int i = 0; i < 3; ++i) vv.sites.push_back(site(f->vertex(i)));
       face_index[&*f] = static_cast<std::uint32_t>(out.vertices.size());
@@ -210,6 +226,7 @@ class Builder {
 
   const Polygon2& polygon_;
   Sdg sdg_;
+  DoubleGt::Construct_svd_vertex_2 construct_vertex_;
   std::vector<SegmentSite> segments_;
   std::set<std::pair<const void*, int>> left_;
   std::unordered_map<const void*, BoundarySite> site_of_;

@@ -213,3 +213,23 @@ TEST_CASE("the Boost backend refuses corners closer than its grid unit; the defa
   CHECK(ma.validate().empty());
   CHECK(structure(ma) == structure(axis_with(p, VoronoiBackend::Cgal, 0.0)));
 }
+
+TEST_CASE("CGAL decides nearly collinear grid outlines without dividing by zero",
+          "[medial][backends]") {
+  // Outlines drawn on a grid, rotated in 3D and projected back: runs of corners that were
+  // collinear are collinear only to 1e-15. Boost's rounded diagram fails the self-check there or
+  // cannot be mended, and CGAL's filtered construction of a Voronoi vertex, on its exact path
+  // (Gmpq, ring-type formulas), divided by zero in GMP, which raises SIGFPE. The CGAL backend
+  // now constructs the positions in doubles and refines them from the sites.
+  for (const char* name : {"grid_outline_rotated.json", "grid_outline_bent.json"}) {
+    const Part part = load_part(test_data_dir() + "/parts/" + name);
+    for (const Patch& patch : part.patches) {
+      CAPTURE(name, patch.name);
+      const MedialAxis cgal = axis_with(patch.polygon, VoronoiBackend::Cgal, part.chord_tol);
+      CHECK(cgal.validate().empty());
+      MedialOptions options;
+      options.chord_tol = part.chord_tol;
+      CHECK(compute_medial_axis(patch.polygon, options).validate().empty());
+    }
+  }
+}
