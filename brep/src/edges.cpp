@@ -42,14 +42,18 @@ std::optional<double> distance_inside(Vec3 p, Vec3 a, Vec3 b) {
 
 /// The distance from p to the piece of `arc`'s circle between its points a and b, or nothing
 /// when p's angle about the centre is not strictly between theirs (a vertex on an arc lies on
-/// the circle, not on the chord the medial axis uses).
+/// the circle, not on the chord the medial axis uses). Angles are measured from the piece's
+/// middle, in (-pi, pi]: a piece spans at most 90 degrees (max_chord_angle). (Measured in
+/// [0, 2 pi) from e1, the arc's own start came out just below 2 pi in some poses, and its first
+/// piece then took in the rest of the circle.)
 std::optional<double> distance_inside_arc(Vec3 p, const PartArc& arc, Vec3 a, Vec3 b) {
   const Vec3 axis = cross(arc.e1, arc.e2);
+  const Vec3 mid = (a - arc.center) + (b - arc.center);
+  const Vec3 m1 = (1.0 / norm(mid)) * mid;
+  const Vec3 m2 = cross(axis, m1);
   auto angle = [&](Vec3 x) {
     const Vec3 w = x - arc.center;
-    double t = std::atan2(dot(w, arc.e2), dot(w, arc.e1));
-    if (t < 0.0) t += 2.0 * kPi;
-    return t;
+    return std::atan2(dot(w, m2), dot(w, m1));
   };
   const double ta = angle(a), tb = angle(b), tp = angle(p);
   if (!(tp > std::min(ta, tb) && tp < std::max(ta, tb))) return std::nullopt;

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "parts.hpp"
+#include "test_support.hpp"
 
 using Catch::Matchers::Contains;
 using namespace laytracks;
@@ -470,6 +471,39 @@ TEST_CASE("rule 10: no vertex inside another patch's edge, and unique names", "[
     raw.patches[3].name.reset();
     CHECK_THAT(error_of(raw),
                Contains("patches 0 and 3") && Contains("\"patch3\"") && Contains("default"));
+  }
+}
+
+TEST_CASE("rule 10: a circle split into arcs is accepted in every pose", "[brep][rules]") {
+  // A round hole of three arcs on one circle, one of them 0.5 degrees long: its end points sit
+  // inside the box of the next arc's first piece. The check once measured angles from the
+  // arc's start in [0, 2 pi): in some poses (12 of 120) the start came out just below 2 pi, the
+  // first piece took in the rest of the circle, and the short arc's point was "on" it (found
+  // by fuzzing in session 30).
+  const Vec3 c{5, 5, 0};
+  const auto on_circle = [&](double deg) {
+    const double a = deg * M_PI / 180.0;
+    return Vec3{c.x + 3 * std::cos(a), c.y + 3 * std::sin(a), 0};
+  };
+  RawPart raw =
+      make_part({{0, 0, 0},
+                 {10, 0, 0},
+                 {10, 10, 0},
+                 {0, 10, 0},
+                 on_circle(0),
+                 on_circle(0.5),
+                 on_circle(180)},
+                {patch("plate", {{0, 1, 2, 3}, {4, 6, 5}})},
+                {{4, 6, on_circle(270)}, {6, 5, on_circle(90.25)}, {5, 4, on_circle(0.25)}});
+  raw.mesh.size = 1.0;
+  std::mt19937_64 rng(20261205);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < 120; ++i) {
+    Transform t = rotation({u(rng), u(rng), u(rng) + 1e-3}, M_PI * u(rng));
+    if (i % 3 == 1) t = compose(mirror_x(), t);
+    if (i % 3 == 2) t = compose(scaling(i % 2 ? 1e-3 : 1e3), t);
+    CAPTURE(i);
+    CHECK_NOTHROW(build_part(transformed(raw, t)));
   }
 }
 
