@@ -92,6 +92,11 @@ int run_mesh(const std::vector<std::string>& argv) {
     std::cerr << e.check().report();
     throw;
   }
+  if (r.size_capped_from && !quiet) {
+    std::cerr << "laytracks: note: element size " << *r.size_capped_from
+              << " is more than a quarter of the part's extent (" << part_extent(part)
+              << "): meshed at " << r.size << "\n";
+  }
   write_part_mesh(*out, part, r.mesh);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -104,6 +109,7 @@ int run_mesh(const std::vector<std::string>& argv) {
       doc["min_end_width"] = r.size;
     } else {
       doc["size"] = r.size;
+      if (r.size_capped_from) doc["size_asked"] = *r.size_capped_from;
     }
     doc["smooth"] = options.mesh.smooth;
     doc["quads"] = r.mesh.elements.size();

@@ -31,24 +31,26 @@ Args meshing_args(const std::vector<std::string>& argv,
 
 /// The help lines of those options, shared by every meshing command's help text (a literal,
 /// so that each help is one string literal).
-#define LAYTRACKS_MESHING_OPTIONS_HELP                                                       \
-  "  --size W         element size of uniform mode, which it implies (default: the part's\n" \
-  "                   mesh.size, else 1/40 of the part's size, twice the largest distance\n" \
-  "                   of a vertex or arc point from their centroid); a size that would\n"    \
-  "                   give more than 5e7 quads (area / W^2) is refused\n"                   \
-  "  --adaptive       adaptive mode (also the part's mesh.mode \"adaptive\"): tracks as\n"   \
-  "                   wide as the medial radius R x dtheta, fine where the part is thin\n"   \
-  "  --uniform        uniform mode, whatever the part's mesh.mode says\n"                   \
-  "  --dtheta DEG     adaptive: angular increment (default: the part's mesh.dtheta_deg,\n"   \
-  "                   else 15); smaller is finer\n"                                          \
+#define LAYTRACKS_MESHING_OPTIONS_HELP                                                           \
+  "  --size W         element size of uniform mode, which it implies (default: the part's\n"     \
+  "                   mesh.size, else 1/40 of the part's extent: the larger of its size\n"       \
+  "                   and twice the largest distance of a vertex or arc point from their\n"      \
+  "                   centroid); a size above 1/4 of the extent is lowered to 1/4 (with a\n"     \
+  "                   note), a size that would give more than 5e7 quads (area / W^2) is\n"       \
+  "                   refused\n"                                                                 \
+  "  --adaptive       adaptive mode (also the part's mesh.mode \"adaptive\"): tracks as\n"       \
+  "                   wide as the medial radius R x dtheta, fine where the part is thin\n"       \
+  "  --uniform        uniform mode, whatever the part's mesh.mode says\n"                        \
+  "  --dtheta DEG     adaptive: angular increment (default: the part's mesh.dtheta_deg,\n"       \
+  "                   else 15); smaller is finer\n"                                              \
   "  --min-size S     adaptive: no track narrower than S (default: the paper's MIN_END_WIDTH,\n" \
-  "                   3% of the largest medial radius at dtheta 15, in proportion to dtheta)\n" \
-  "  --max-size S     adaptive: no track wider than S (default: no bound)\n"                 \
-  "  --smooth N       up to N sweeps of each: Laplacian, angle optimisation, untangling\n"   \
-  "                   of the worst quads, and untapering (nodes towards parallelograms);\n" \
-  "                   never inverting an element (default 10; 0 keeps the nodes where\n"   \
-  "                   the templates put them; the cavity re-fill relaxes its quads with\n" \
-  "                   min(N, 4) sweeps)\n"                                                 \
+  "                   3% of the largest medial radius at dtheta 15, in proportion to dtheta)\n"  \
+  "  --max-size S     adaptive: no track wider than S (default: no bound)\n"                     \
+  "  --smooth N       up to N sweeps of each: Laplacian, angle optimisation, untangling\n"       \
+  "                   of the worst quads, and untapering (nodes towards parallelograms);\n"      \
+  "                   never inverting an element (default 10; 0 keeps the nodes where\n"         \
+  "                   the templates put them; the cavity re-fill relaxes its quads with\n"       \
+  "                   min(N, 4) sweeps)\n"                                                       \
   "  --chord-tol T    sagitta bound for arcs (default 1e-3 x the part's size)\n"
 
 /// Reads --size, --smooth, --chord-tol, --adaptive, --uniform, --dtheta, --min-size and

@@ -15,10 +15,10 @@
 
 namespace laytracks {
 
-double default_element_size(const Part& part) {
+double part_extent(const Part& part) {
   // The part's size counts the file's vertices only; an arc can reach far beyond them (a disk
-  // of radius 20 given by a chord of 7 and the arc over it: size 7, the default 0.17 and
-  // 150,000 quads). With the arcs' points too, the larger of the two.
+  // of radius 20 given by a chord of 7 and the arc over it: size 7, the default element size
+  // 0.17 and 150,000 quads). With the arcs' points too, the larger of the two.
   Vec3 c{0.0, 0.0, 0.0};
   std::size_t n = 0;
   for (const Patch& patch : part.patches)
@@ -27,13 +27,25 @@ double default_element_size(const Part& part) {
         c = c + part.vertices[v.index()].position;
         ++n;
       }
-  if (n == 0) return part.size / 40.0;
+  if (n == 0) return part.size;
   c = (1.0 / static_cast<double>(n)) * c;
   double reach = 0.0;
   for (const Patch& patch : part.patches)
     for (const Loop& loop : patch.loops)
       for (VertexId v : loop.vertices) reach = std::max(reach, distance(c, part.vertices[v.index()].position));
-  return std::max(part.size, 2.0 * reach) / 40.0;
+  return std::max(part.size, 2.0 * reach);
+}
+
+double default_element_size(const Part& part) { return part_extent(part) / 40.0; }
+
+double uniform_element_size(const Part& part,
+                            const MeshPartOptions& options,
+                            std::optional<double>* capped_from) {
+  const double asked = options.size.value_or(part.mesh.size.value_or(default_element_size(part)));
+  const double cap = kMaxSizeFraction * part_extent(part);
+  if (!(asked > cap)) return asked;
+  if (capped_from) *capped_from = asked;
+  return cap;
 }
 
 namespace {
@@ -89,7 +101,7 @@ CutGraphOptions cut_graph_options(const Part& part,
     law = std::make_unique<TrackWidthLaw>(part, axes, ao);
     cg.adaptive = law.get();
   } else {
-    cg.track_width = options.size.value_or(part.mesh.size.value_or(default_element_size(part)));
+    cg.track_width = uniform_element_size(part, options);
   }
   const double h = law ? law->end_width() : cg.track_width;
   if (h > 0.0)
@@ -112,6 +124,7 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
   // The mode and the size as cut_graph_options chose them.
   r.adaptive = law != nullptr;
   r.size = law ? law->end_width() : cg.track_width;
+  if (!law) uniform_element_size(part, options, &r.size_capped_from);
   if (law) r.dtheta_deg = law->options().dtheta * 180.0 / kPi;
   // A size so small that the mesh could not fit in memory is refused before any work (a
   // rectangle at 1e-10 ran out of memory; at 1e-300 the counts overflowed to a 6-quad mesh).

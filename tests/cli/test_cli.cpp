@@ -369,6 +369,35 @@ TEST_CASE("mesh refuses what it cannot mesh, writes nothing, and says where", "[
   CHECK(std::distance(fs::directory_iterator(d), fs::directory_iterator()) == 1);
 }
 
+TEST_CASE("mesh lowers a size beyond a quarter of the part's extent, says so, and reports both",
+          "[cli][mesh]") {
+  // Fuzzed parts whose mesh.size is 4 and 13 times their extent (a slotted strip 7.4 long, a
+  // plate of arcs 42 across): at that size every rail got one step, and no template gave
+  // valid quads. At a quarter of the extent they mesh.
+  const fs::path d = fresh_dir("mesh-huge-size");
+  for (const char* name : {"slots_huge_size.json", "arcs_huge_size.json"}) {
+    CAPTURE(name);
+    const std::string part = q(test_data_dir() + "/parts/" + name);
+    const Run r = run("mesh " + part + " -o " + q(d / "m.msh") + " --report " + q(d / "r.json"));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.err, Catch::Contains("is more than a quarter of the part's extent"));
+    const auto doc = nlohmann::json::parse(slurp(d / "r.json"));
+    CHECK(doc["valid"].get<bool>());
+    const double asked = doc["size_asked"].get<double>();
+    const double size = doc["size"].get<double>();
+    CHECK(size < asked / 3.9);
+    // Asking for the size it used gives the same mesh, without the note.
+    std::ostringstream exact;
+    exact.precision(17);
+    exact << size;
+    const Run same = run("mesh " + part + " -o " + q(d / "n.msh") + " --size " + exact.str());
+    CHECK(same.status == 0);
+    CHECK(same.err.find("quarter") == std::string::npos);
+    CHECK(slurp(d / "n.msh") == slurp(d / "m.msh"));
+  }
+}
+
 TEST_CASE("mesh --adaptive: the mode from the part or the command line, its report, and its "
           "mistakes", "[cli][adaptive]") {
   const fs::path d = fresh_dir("adaptive");
