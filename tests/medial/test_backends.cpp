@@ -233,3 +233,32 @@ TEST_CASE("CGAL decides nearly collinear grid outlines without dividing by zero"
     }
   }
 }
+
+TEST_CASE("an axis in pieces fails the self-check, and the default backend then uses CGAL",
+          "[medial][backends]") {
+  // A maze of grid cells bent into two patches, rotated in 3D: Boost's diagram of the second
+  // patch lost the stretch of axis along one corridor (two pieces) and passed every other
+  // check, so the mesh counted 105 quads here and 103 in the part's own pose.
+  const Part part = load_part(test_data_dir() + "/parts/maze_bent_rotated.json");
+  REQUIRE(part.patches.size() >= 2);
+  const Polygon2& poly = part.patches[1].polygon;
+  MedialOptions boost_only;
+  boost_only.chord_tol = part.chord_tol;
+  boost_only.backend = VoronoiBackend::BoostOnly;
+  std::vector<std::string> problems;
+  try {
+    problems = compute_medial_axis(poly, boost_only).validate();
+  } catch (const InternalError& e) {
+    problems.push_back(e.what());  // refused outright: as good
+  }
+  INFO((problems.empty() ? std::string() : problems.front()));
+  CHECK_FALSE(problems.empty());
+  MedialOptions options;
+  options.chord_tol = part.chord_tol;
+  const MedialAxis ma = compute_medial_axis(poly, options);
+  CHECK(ma.validate().empty());
+  CHECK(structure(ma).components == 1);
+  MedialOptions cgal = options;
+  cgal.backend = VoronoiBackend::Cgal;
+  CHECK(structure(ma) == structure(compute_medial_axis(poly, cgal)));
+}

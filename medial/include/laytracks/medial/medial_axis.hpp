@@ -182,8 +182,8 @@ class MedialAxis {
   bool is_round(std::size_t k) const { return k < round_.size() && round_[k] != 0; }
 
   /// Self-check: radii equal the distance to the boundary (1e-9 relative), vertices inside the
-  /// polygon, degrees consistent, edges equidistant from their sites. Returns the problems
-  /// found, each a sentence; empty when valid.
+  /// polygon, degrees consistent, edges equidistant from their sites, the axis in one piece.
+  /// Returns the problems found, each a sentence; empty when valid.
   std::vector<std::string> validate() const;
 
  private:
