@@ -1350,7 +1350,7 @@ class QuadBuilder {
       const CEdge& c = g.edges[hs[k].edge];
       if (!free_piece(c.edge, c.piece)) continue;  // only a free piece changes this face alone
       const double len = piece_length(c) / (edges_[c.edge].count[c.piece] + 1);
-      if (len < kStripMatchRel * other) continue;
+      if (settled_length(len) < settled_length(kStripMatchRel * other)) continue;
       const long long q = settled_length(len);
       if (q > best_len) {
         best = k;

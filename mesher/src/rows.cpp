@@ -34,6 +34,11 @@ constexpr double kRowJacobianSlack = 1e-9;
 /// A merged quad less square than its pair is still taken up to this aspect ratio (the end of
 /// a strip: two near-squares become one rectangle of 2).
 constexpr double kRowAspectOk = 3.0;
+/// Lengths and aspect ratios within this factor of a threshold, or of each other, count as
+/// equal: a grid-cell part has exact ratios of 2 and 3 in one pose that rounding puts either
+/// side of the threshold in another (rect_063 of the session-30 fuzzing: 104 quads, and 100
+/// scaled by 1e-3).
+constexpr double kRowTieRel = 1e-9;
 
 /// Aspect ratio as quality.md defines it (measure_quad), of a quad in the patch's plane.
 double quad_aspect(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
@@ -191,7 +196,8 @@ class MeshRows {
       const auto& c = pairs[k];
       const auto& r = pairs[1 - k];
       const double rung = std::max(len(r.first), len(r.second));
-      if (std::min(len(c.first), len(c.second)) >= kRowThinRatio * rung) return c;
+      if (std::min(len(c.first), len(c.second)) >= kRowThinRatio * rung * (1.0 - kRowTieRel))
+        return c;
     }
     return std::nullopt;
   }
@@ -269,7 +275,7 @@ class MeshRows {
       double rung = 0.0;
       for (std::uint32_t a : neighbours(chain[i]))
         if (a != prev && a != next) rung = std::max(rung, length(chain[i], a));
-      if (rung * kRowThinRatio > median) return false;
+      if (rung * kRowThinRatio > median * (1.0 + kRowTieRel)) return false;
     }
     return true;
   }
@@ -321,7 +327,9 @@ class MeshRows {
       // No merged quad worse than its pair in its worst corner, and each squarer than its pair
       // or square enough; the chain as a whole squarer.
       if (j_new < j_old - kRowJacobianSlack) return false;
-      if (!(a_new < std::min(a_u, a_d) || a_new <= kRowAspectOk)) return false;
+      if (!(a_new < std::min(a_u, a_d) * (1.0 - kRowTieRel) ||
+            a_new <= kRowAspectOk * (1.0 + kRowTieRel)))
+        return false;
       worst_old = std::max({worst_old, a_u, a_d});
       worst_new = std::max(worst_new, a_new);
       pairs.emplace_back(up, down);
@@ -329,7 +337,7 @@ class MeshRows {
       e.nodes = nq;
       made.push_back(e);
     }
-    return worst_new < worst_old;
+    return worst_new < worst_old * (1.0 - kRowTieRel);
   }
 
   const Part& part_;
