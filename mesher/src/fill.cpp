@@ -1690,10 +1690,18 @@ constexpr double kLargeFaceFloor = 0.2;
 constexpr std::size_t kHugeFace = 128;
 constexpr double kHugeFaceFloor = 0.05;
 
+/// x in whole steps of `step`, counting a value within kStepSlack of a step (in steps) as
+/// that step. Grid-cell outlines give worst corners and lengths exactly on a step in one pose
+/// (a 3-4-5 quad's 0.6, a square's 1) and a rounding below it in another: plain floor put
+/// them a step apart, and rect_043 of the session-30 fuzzing took another template and 378
+/// quads instead of 385 scaled by 1e3.
+constexpr double kStepSlack = 1e-6;
+double whole_steps(double x, double step) { return std::floor(x / step + kStepSlack); }
+
 /// Templates' worst corners are compared in steps of this; any valid one beats every invalid.
 constexpr double kChoiceStep = 0.05;
 double quantised(double jacobian) {
-  const double step = std::floor(jacobian / kChoiceStep);
+  const double step = whole_steps(jacobian, kChoiceStep);
   return jacobian > kMinValidJacobian ? step : step - 1e6;
 }
 
@@ -2089,7 +2097,7 @@ std::optional<FaceMesh> fill_reflex(const FaceInput& face, int depth) {
   for (std::uint32_t k = 0; k < n; ++k) mean_edge += edge(k) / n;
   auto rank = [&](const Cut& c) {
     return std::make_tuple(std::round(c.slack / kReflexSlackStep),
-                           std::floor(c.length / (kReflexLengthStep * mean_edge)), c.r, c.t);
+                           whole_steps(c.length, kReflexLengthStep * mean_edge), c.r, c.t);
   };
   std::sort(cuts.begin(), cuts.end(), [&](const Cut& a, const Cut& b) { return rank(a) < rank(b); });
   // A chord and its reverse (both ends reflex) are one cut.
@@ -2161,7 +2169,7 @@ std::optional<FaceMesh> fill_reflex(const FaceInput& face, int depth) {
     }
     if (!ok) continue;
     FaceMesh out = m.finish();
-    const double shape = std::floor(mean_shape(out, face) / kShapeStep);
+    const double shape = whole_steps(mean_shape(out, face), kShapeStep);
     if (!best || quantised(out.min_jacobian) > quantised(best->min_jacobian) ||
         (quantised(out.min_jacobian) == quantised(best->min_jacobian) && shape > best_shape)) {
       best = std::move(out);
@@ -2247,7 +2255,7 @@ std::optional<FaceMesh> pick_unstructured(const FaceInput& face, bool fans, int 
     if (k == 8 && m && !match_ok(*m, face, pick, best_worst)) continue;
     if (m && m->min_jacobian >= kAcceptJacobian) {
       best_worst = std::max(best_worst, quantised(m->min_jacobian));
-      const double shape = std::floor(mean_shape(*m, face) / kShapeStep);
+      const double shape = whole_steps(mean_shape(*m, face), kShapeStep);
       if (!pick || shape > pick_shape) {
         pick = *m;
         pick_shape = shape;

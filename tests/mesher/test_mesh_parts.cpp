@@ -974,3 +974,21 @@ TEST_CASE("grid-cell parts, whose lengths come in exact ratios, mesh the same in
     return r.stats.parity_strips > 0 && r.stats.thin_rows + r.stats.parity_boundary > 0;
   });
 }
+
+TEST_CASE("templates whose worst corner falls exactly on a step choose alike in every pose",
+          "[mesh][poses]") {
+  // A fuzzed grid-cell outline (session 30): a face's match template has a worst corner of
+  // exactly 0.6 (a 3-4-5 shape) in one pose and a rounding below in another, and the templates
+  // are compared in whole steps of 0.05: the plain floor took the match or the split by pose
+  // (385 quads, 378 scaled by 1e3). Now a value within 1e-6 steps of a step counts as on it.
+  const RawPart raw = read_brep_json(test_data_dir() + "/parts/grid_steps.json");
+  std::size_t quads = 0;
+  for (const Transform& t : {Transform{}, scaling(1e3), scaling(1e-3), mirror_x(),
+                             compose(rotation({1.0, 2.0, 3.0}, 0.7), scaling(1e3))}) {
+    const MeshPartResult r = mesh_part(build_part(transformed(raw, t)), MeshPartOptions{});
+    CHECK(r.check.valid());
+    CHECK(r.quality.measures[6].worst > 0.6);
+    if (quads == 0) quads = r.mesh.elements.size();
+    CHECK(r.mesh.elements.size() == quads);
+  }
+}
