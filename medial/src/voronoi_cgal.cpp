@@ -9,7 +9,7 @@
 //   collinear runs of corners. refine_vertex() recomputes every position from its sites anyway.
 //   (CORE::Expr as the exact kernel avoided the crash too, and its predicates were 1.6x to 1.9x
 //   faster, but CORE appends warnings to a file "Core_Diagnostics" in the working directory,
-//   and calls exit(1) when it cannot open it or meets a zero divisor: not for a library.);
+//   and calls exit(1) when it cannot open it or meets a zero divisor: not for a library);
 // - points are inserted spatially sorted, then the segments in a shuffled order (in polygon
 //   order a 20k-segment star took 17 s, shuffled 0.7 s). The shuffle uses a fixed seed and our
 //   own Fisher-Yates, so the result is the same on every run and every platform.
