@@ -235,6 +235,7 @@ class QuadBuilder {
     }
     for (std::size_t p = 0; p < np; ++p) {
       if (law_) adaptive_rail_counts(PatchId(p), patches_[p]);
+      drop_outward_rails(patches_[p]);
       bridge_loose_loops(patches_[p]);
       trace_faces(PatchId(p), patches_[p]);
     }
@@ -1080,6 +1081,39 @@ class QuadBuilder {
       const double n = rails.at(e.b);
       e.count = edges_for(it->second.first / n, it->second.second / n);
     }
+  }
+
+  /// A rail that leaves its boundary node outside the patch's corner there (between the next
+  /// boundary piece and the previous one, counter-clockwise) would make a face run outside the
+  /// patch: dropped, then the rails left dangling. A tooth of a sawtooth outline narrower than
+  /// rounding at the rail's scale puts its axis point's rail just outside the tooth.
+  void drop_outward_rails(PatchGraph& g) {
+    const auto n = static_cast<std::uint32_t>(g.nodes.size());
+    std::vector<std::uint32_t> next(n, kNone), prev(n, kNone);
+    for (const CEdge& e : g.edges) {
+      if (e.rail) continue;
+      next[e.a] = e.b;
+      prev[e.b] = e.a;
+    }
+    const auto ccw_angle = [](Vec2 from, Vec2 to) {
+      double t = std::atan2(cross(from, to), dot(from, to));
+      return t < 0.0 ? t + 2.0 * kPi : t;
+    };
+    const std::size_t before = g.edges.size();
+    g.edges.erase(std::remove_if(g.edges.begin(), g.edges.end(),
+                                 [&](const CEdge& e) {
+                                   if (!e.rail || next[e.a] == kNone || prev[e.a] == kNone)
+                                     return false;
+                                   const Vec2 v = g.nodes[e.a].p;
+                                   const Vec2 out = g.nodes[next[e.a]].p - v;
+                                   const double corner = ccw_angle(out, g.nodes[prev[e.a]].p - v);
+                                   const double rail = ccw_angle(out, g.nodes[e.b].p - v);
+                                   return !(rail > 0.0 && rail < corner);
+                                 }),
+                  g.edges.end());
+    if (g.edges.size() == before) return;
+    result_.stats.outward_rails += before - g.edges.size();
+    drop_dangling_rails(g);
   }
 
   /// Rails whose MA end meets no other rail bound no face: dropped (repeatedly).
