@@ -6,6 +6,7 @@
 #include <optional>
 #include <sstream>
 
+#include "laytracks/brep/union_find.hpp"
 #include "sites.hpp"
 
 namespace laytracks {
@@ -936,19 +937,13 @@ std::vector<std::string> MedialAxis::validate() const {
   // One piece: the axis of a connected region is connected. (Boost's diagram of a grid-cell
   // outline rotated in 3D once lost the stretch of axis along a corridor, and every other
   // check passed.)
-  std::vector<std::uint32_t> parent(vertices_.size());
-  for (std::uint32_t i = 0; i < parent.size(); ++i) parent[i] = i;
-  const auto find = [&](std::uint32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  UnionFind pieces_of(vertices_.size());
   for (const MaEdge& e : edges_)
     if (e.a.index() < vertices_.size() && e.b.index() < vertices_.size())
-      parent[find(static_cast<std::uint32_t>(e.a.index()))] =
-          find(static_cast<std::uint32_t>(e.b.index()));
+      pieces_of.unite(e.a.index(), e.b.index());
   std::size_t pieces = 0;
-  for (std::uint32_t i = 0; i < parent.size(); ++i)
-    if (find(i) == i) ++pieces;
+  for (std::size_t i = 0; i < vertices_.size(); ++i)
+    if (pieces_of.find(i) == i) ++pieces;
   if (pieces > 1) {
     problems.push_back("the axis is in " + std::to_string(pieces) +
                        " pieces, but the polygon is one region");

@@ -856,9 +856,7 @@ class QuadBuilder {
         if (n != next_of.end() && p != prev_of.end() && mesh != kNone && is_vertex_node_[mesh] &&
             !by_arc.count(node)) {
           const Vec2 w = g.nodes[n->second].p - o, u = g.nodes[p->second].p - o;
-          double interior = std::atan2(cross(w, u), dot(w, u));
-          if (interior < 0.0) interior += 2.0 * kPi;
-          reflex = interior > kReflexFanCorner;
+          reflex = ccw_angle(w, u) > kReflexFanCorner;
         }
       }
       const double limit = at_ma ? kMinWedgeAngle : reflex ? kMinReflexFanAngle : kMinFanAngle;
@@ -1095,10 +1093,6 @@ class QuadBuilder {
       next[e.a] = e.b;
       prev[e.b] = e.a;
     }
-    const auto ccw_angle = [](Vec2 from, Vec2 to) {
-      double t = std::atan2(cross(from, to), dot(from, to));
-      return t < 0.0 ? t + 2.0 * kPi : t;
-    };
     const std::size_t before = g.edges.size();
     g.edges.erase(std::remove_if(g.edges.begin(), g.edges.end(),
                                  [&](const CEdge& e) {

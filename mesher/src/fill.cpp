@@ -1001,14 +1001,13 @@ double interior_angle(const std::vector<Vec2>& poly, std::size_t i) {
   return a;
 }
 
-namespace {
-
-/// Counter-clockwise angle from `from` to `to`, in [0, 2 pi).
 double ccw_angle(Vec2 from, Vec2 to) {
   double a = std::atan2(cross(from, to), dot(from, to));
   if (a < 0.0) a += 2.0 * kPi;
   return a;
 }
+
+namespace {
 
 /// A polygon read by its corners: when exactly four nodes turn by more than 30 degrees
 /// (interior angle below kCornerAngle) and none is reflex, its four sides as a strip

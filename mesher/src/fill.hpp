@@ -270,6 +270,9 @@ double settled(double jacobian);
 /// Interior angle of the counter-clockwise polygon `poly` at node i (radians, in (0, 2 pi)).
 double interior_angle(const std::vector<Vec2>& poly, std::size_t i);
 
+/// Counter-clockwise angle from `from` to `to`, in [0, 2 pi).
+double ccw_angle(Vec2 from, Vec2 to);
+
 /// The final smoothing's untangler works on every node with a quad below this (the
 /// templates' relaxation stops at kAcceptJacobian, the bound of their choice; 0.6 until
 /// session 8, when 0.7 (past kFinalEscapeTarget) raised the worst corner of 47 of the 217

@@ -89,7 +89,8 @@ class Clock {
 CutGraphOptions cut_graph_options(const Part& part,
                                   std::vector<MedialAxis>& axes,
                                   const MeshPartOptions& options,
-                                  std::unique_ptr<TrackWidthLaw>& law) {
+                                  std::unique_ptr<TrackWidthLaw>& law,
+                                  std::optional<double>* size_capped_from) {
   CutGraphOptions cg;
   law.reset();
   if (options.adaptive.value_or(part.mesh.mode == MeshMode::Adaptive)) {
@@ -101,7 +102,7 @@ CutGraphOptions cut_graph_options(const Part& part,
     law = std::make_unique<TrackWidthLaw>(part, axes, ao);
     cg.adaptive = law.get();
   } else {
-    cg.track_width = uniform_element_size(part, options);
+    cg.track_width = uniform_element_size(part, options, size_capped_from);
   }
   const double h = law ? law->end_width() : cg.track_width;
   if (h > 0.0)
@@ -120,11 +121,10 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
   r.times.medial = clock.lap();
   stage("rails");
   std::unique_ptr<TrackWidthLaw> law;
-  const CutGraphOptions cg = cut_graph_options(part, axes, options, law);
+  const CutGraphOptions cg = cut_graph_options(part, axes, options, law, &r.size_capped_from);
   // The mode and the size as cut_graph_options chose them.
   r.adaptive = law != nullptr;
   r.size = law ? law->end_width() : cg.track_width;
-  if (!law) uniform_element_size(part, options, &r.size_capped_from);
   if (law) r.dtheta_deg = law->options().dtheta * 180.0 / kPi;
   // A size so small that the mesh could not fit in memory is refused before any work (a
   // rectangle at 1e-10 ran out of memory; at 1e-300 the counts overflowed to a 6-quad mesh).

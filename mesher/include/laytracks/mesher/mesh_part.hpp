@@ -113,11 +113,13 @@ class InvalidMeshError : public InternalError {
 /// The cut-graph options for these meshing options: the uniform track width, or in adaptive
 /// mode the width law, which `law` receives (it must outlive the options). Also chooses, at
 /// that element size (adaptive: the law's finest width), which round holes the axes map along
-/// rays from their centres (MedialAxis::choose_round_holes).
+/// rays from their centres (MedialAxis::choose_round_holes). `size_capped_from`, when given,
+/// receives the size asked for if uniform_element_size capped it.
 CutGraphOptions cut_graph_options(const Part& part,
                                   std::vector<MedialAxis>& axes,
                                   const MeshPartOptions& options,
-                                  std::unique_ptr<TrackWidthLaw>& law);
+                                  std::unique_ptr<TrackWidthLaw>& law,
+                                  std::optional<double>* size_capped_from = nullptr);
 
 /// Meshes the part and checks the result by quality.md. Throws InvalidMeshError (the failed
 /// rules, with places) when the mesh is not valid, and InternalError when a stage fails.
