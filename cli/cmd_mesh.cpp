@@ -122,6 +122,7 @@ int run_mesh(const std::vector<std::string>& argv) {
     doc["narrow_fans_dropped"] = r.stats.narrow_fans;
     doc["crowded_feet_dropped"] = r.stats.crowded_feet;
     doc["outward_rails_dropped"] = r.stats.outward_rails;
+    doc["slit_rails_dropped"] = r.stats.slit_rails;
     doc["fan_cluster_merges"] = r.stats.fan_clusters;
     doc["smooth_vertex_feet"] = r.stats.smooth_vertex_feet;
     doc["edge_flips"] = r.stats.edge_flips;

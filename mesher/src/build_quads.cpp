@@ -72,6 +72,8 @@ constexpr double kTinyEndPiece = 0.1;
 /// than kDiskGap (a regular hexagon's six rails stay: its wedges are good quads).
 constexpr std::size_t kDiskRails = 8;
 constexpr double kDiskGap = 60.0 * kPi / 180.0;
+/// drop_slit_rails: at most this many rounds of dropping and tracing the faces again per patch.
+constexpr int kSlitRounds = 4;
 /// flip_edges: pairs of quads whose worse is below kFlipBelow are re-split when another
 /// diagonal of their hexagon beats it by kFlipGain; at most kFlipPasses passes.
 constexpr double kFlipBelow = 0.3;
@@ -238,6 +240,11 @@ class QuadBuilder {
       drop_outward_rails(patches_[p]);
       bridge_loose_loops(patches_[p]);
       trace_faces(PatchId(p), patches_[p]);
+      // Each round drops rails for good, but bridging may add rails back: a few rounds.
+      for (int round = 0; round < kSlitRounds && drop_slit_rails(patches_[p]); ++round) {
+        bridge_loose_loops(patches_[p]);
+        trace_faces(PatchId(p), patches_[p]);
+      }
     }
     fix_parity();
     materialise_pieces();
@@ -1108,6 +1115,66 @@ class QuadBuilder {
     if (g.edges.size() == before) return;
     result_.stats.outward_rails += before - g.edges.size();
     drop_dangling_rails(g);
+  }
+
+  /// A rail with the same face on both sides that is no bridge of the patch's graph (its ends
+  /// stay joined without it) cannot be: in a plane, an edge on a cycle parts its two sides.
+  /// It is there when the rails round an axis point are out of order: three rails through one
+  /// axis point in a tooth of a sawtooth outline far narrower than the element (axis points
+  /// within rounding of one another) ran round it in the wrong order, the face passed each of
+  /// them both ways and visited their nodes twice, and no template fills a face that runs
+  /// into itself that way. Such rails are dropped, then the rails left dangling, and the
+  /// faces traced again (bridging loose loops first, as before). A true bridge (the one rail
+  /// chain joining a hole to the rest, a keyhole face) stays: templates fill those. Parity is
+  /// kept: a slit of k edges is 2k nodes of its face's cycle. True when any was dropped.
+  bool drop_slit_rails(PatchGraph& g) {
+    const auto n = static_cast<std::uint32_t>(g.nodes.size());
+    std::vector<std::vector<std::uint32_t>> adjacent(n);
+    for (std::uint32_t e = 0; e < g.edges.size(); ++e) {
+      adjacent[g.edges[e].a].push_back(e);
+      adjacent[g.edges[e].b].push_back(e);
+    }
+    // Whether a reaches b without edge `skip` (breadth first).
+    std::vector<std::uint32_t> seen(n, kNone), queue;
+    const auto joined_without = [&](std::uint32_t skip) {
+      const std::uint32_t a = g.edges[skip].a, b = g.edges[skip].b;
+      queue.assign(1, a);
+      seen[a] = skip;
+      for (std::size_t k = 0; k < queue.size(); ++k) {
+        const std::uint32_t v = queue[k];
+        if (v == b) return true;
+        for (std::uint32_t e : adjacent[v]) {
+          if (e == skip) continue;
+          const std::uint32_t w = g.edges[e].a == v ? g.edges[e].b : g.edges[e].a;
+          if (seen[w] == skip) continue;
+          seen[w] = skip;
+          queue.push_back(w);
+        }
+      }
+      return false;
+    };
+    std::vector<bool> drop(g.edges.size(), false);
+    bool any = false;
+    for (std::uint32_t e = 0; e < g.edges.size(); ++e) {
+      const CEdge& c = g.edges[e];
+      if (c.rail && c.face[0] != kNone && c.face[0] == c.face[1] && joined_without(e))
+        drop[e] = any = true;
+    }
+    if (!any) return false;
+    std::size_t kept = 0;
+    for (std::size_t e = 0; e < g.edges.size(); ++e) {
+      if (drop[e]) {
+        ++result_.stats.slit_rails;
+        continue;
+      }
+      if (kept != e) g.edges[kept] = std::move(g.edges[e]);
+      ++kept;
+    }
+    g.edges.resize(kept);
+    drop_dangling_rails(g);
+    g.faces.clear();
+    for (CEdge& c : g.edges) c.face[0] = c.face[1] = kNone;
+    return true;
   }
 
   /// Rails whose MA end meets no other rail bound no face: dropped (repeatedly).

@@ -1002,3 +1002,12 @@ TEST_CASE("a rail that leaves its boundary node outside the patch is dropped, in
   check_test_parts({{"sawtooth_blob.json", 0.0}, {"sawtooth_sectors.json", 0.0}},
                    [](const MeshPartResult& r) { return r.stats.outward_rails > 0; });
 }
+
+TEST_CASE("a rail with one face on both sides is dropped, in every pose", "[mesh][poses]") {
+  // Fuzzed sawtooth outlines (session 32): three rails through one axis point in a tooth far
+  // narrower than h ran round it out of order, so a face passed each of them both ways and
+  // touched itself ("no template gives valid quads"). Dropped, with the rails they leave
+  // dangling, the faces are simple again. One flat part of sectors, one bent over 4 patches.
+  check_test_parts({{"slit_sectors.json", 0.1}, {"slit_bent.json", 0.0}},
+                   [](const MeshPartResult& r) { return r.stats.slit_rails > 0; });
+}
