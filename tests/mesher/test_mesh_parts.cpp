@@ -1011,3 +1011,13 @@ TEST_CASE("a rail with one face on both sides is dropped, in every pose", "[mesh
   check_test_parts({{"slit_sectors.json", 0.1}, {"slit_bent.json", 0.0}},
                    [](const MeshPartResult& r) { return r.stats.slit_rails > 0; });
 }
+
+TEST_CASE("the rails that cut off a needle are dropped, in every pose", "[mesh][poses]") {
+  // Fuzzed outlines (session 32) with needles: a sliver blob of aspect 63 and a bent part of
+  // three patches, each with a tooth whose tip is a few hundredths of a degree. Rails across
+  // the tooth's root cut it off as a face of one boundary run and one run of rails, which no
+  // template fills ("no template gives valid quads", best corner 1e-14). Without those rails
+  // the tooth is part of the face beyond; its quads are slivers at the tip, but valid.
+  check_test_parts({{"sliver_needle.json", 0.0}, {"sliver_needle_bent.json", 0.0}},
+                   [](const MeshPartResult& r) { return r.stats.sliver_cap_rails > 0; });
+}

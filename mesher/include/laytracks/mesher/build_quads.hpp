@@ -45,6 +45,7 @@ struct QuadStats {
   std::size_t dangling_rails = 0;  ///< rail segments left out: their MA end met no other rail
   std::size_t outward_rails = 0;   ///< rails that left their boundary node outside the patch
   std::size_t slit_rails = 0;      ///< rails with one face on both sides: dropped
+  std::size_t sliver_cap_rails = 0;  ///< rails that cut off a needle: dropped
   std::size_t fan_clusters = 0;    ///< MA nodes merged into a deeper one (merge_fan_clusters)
   /// rail feet moved onto a smooth B-Rep vertex within kTinyEndPiece x h of them
   std::size_t smooth_vertex_feet = 0;
