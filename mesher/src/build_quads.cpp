@@ -189,9 +189,12 @@ struct PatchGraph {
 
 class QuadBuilder {
  public:
-  QuadBuilder(const Part& part, const CutGraph& graph,
-              const QuadOptions& options)
-      : part_(part), graph_(graph), h_(options.size), law_(options.adaptive) {
+  QuadBuilder(const Part& part, const CutGraph& graph, const QuadOptions& options)
+      : part_(part),
+        graph_(graph),
+        h_(options.size),
+        law_(options.adaptive),
+        sliver_caps_(options.drop_sliver_caps) {
     if (!(h_ > 0.0) && !law_) throw InternalError("mesher: the element size must be positive");
   }
 
@@ -247,8 +250,8 @@ class QuadBuilder {
       bridge_loose_loops(patches_[p]);
       trace_faces(PatchId(p), patches_[p]);
       // Each round drops rails for good, but bridging may add rails back: a few rounds.
-      for (int round = 0;
-           round < kSlitRounds && (drop_slit_rails(patches_[p]) || drop_sliver_caps(patches_[p]));
+      for (int round = 0; round < kSlitRounds && (drop_slit_rails(patches_[p]) ||
+                                                  (sliver_caps_ && drop_sliver_caps(patches_[p])));
            ++round) {
         bridge_loose_loops(patches_[p]);
         trace_faces(PatchId(p), patches_[p]);
@@ -1879,6 +1882,7 @@ class QuadBuilder {
   std::vector<EdgeNodes> edges_;
   std::vector<PatchGraph> patches_;
   const TrackWidthLaw* law_ = nullptr;
+  bool sliver_caps_ = false;  ///< QuadOptions::drop_sliver_caps
   /// Per arc, its discretisation edges: parameters of the edge's a and b along the arc.
   std::vector<std::vector<std::tuple<double, double, EdgeId>>> arc_edges_;
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <exception>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -155,7 +156,22 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
   QuadOptions qo;
   qo.size = r.size;
   qo.adaptive = law.get();
-  QuadResult quads = build_quads(part, graph, qo);
+  // A face that no template fills is most often a needle of a sawtooth outline cut off by
+  // rails: a second attempt drops those rails (docs/mesher.md, "Sliver caps"). Only then, so
+  // that every part meshed at the first attempt keeps its mesh; when the second attempt fails
+  // too, the first one's message stands.
+  QuadResult quads;
+  try {
+    quads = build_quads(part, graph, qo);
+  } catch (const InternalError&) {
+    const std::exception_ptr first = std::current_exception();
+    qo.drop_sliver_caps = true;
+    try {
+      quads = build_quads(part, graph, qo);
+    } catch (const InternalError&) {
+      std::rethrow_exception(first);
+    }
+  }
   r.mesh = std::move(quads.mesh);
   r.stats = quads.stats;
   r.stats.edge_flips = flip_edges(part, r.mesh);

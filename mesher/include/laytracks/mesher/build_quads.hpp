@@ -19,6 +19,9 @@ struct QuadOptions {
   /// Adaptive mode: the width law the rails were laid with; boundary pieces are split at its
   /// local width and rail counts follow Eq. (2). Must outlive the call.
   const TrackWidthLaw* adaptive = nullptr;
+  /// The second attempt after a face no template fills (mesh_part): the rails that cut off a
+  /// needle go too (docs/mesher.md, "Sliver caps").
+  bool drop_sliver_caps = false;
 };
 
 /// refill_cavities tries quads below this in uniform mode, below the other in adaptive mode:
