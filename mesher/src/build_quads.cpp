@@ -77,8 +77,8 @@ constexpr double kDiskGap = 60.0 * kPi / 180.0;
 /// 1e-2 ten of the 402 set meshes changed (faceted cylinders' thin facets, an arc's base), at
 /// 1e-3 none.
 constexpr double kSliverCap = 1e-3;
-/// drop_slit_rails and drop_sliver_caps: at most this many rounds of dropping and tracing the faces
-/// again per patch.
+/// drop_slit_rails and drop_sliver_caps: at most this many rounds of dropping and tracing the
+/// faces again per patch.
 constexpr int kSlitRounds = 4;
 /// flip_edges: pairs of quads whose worse is below kFlipBelow are re-split when another
 /// diagonal of their hexagon beats it by kFlipGain; at most kFlipPasses passes.
@@ -1111,21 +1111,18 @@ class QuadBuilder {
       next[e.a] = e.b;
       prev[e.b] = e.a;
     }
-    const std::size_t before = g.edges.size();
-    g.edges.erase(std::remove_if(g.edges.begin(), g.edges.end(),
-                                 [&](const CEdge& e) {
-                                   if (!e.rail || next[e.a] == kNone || prev[e.a] == kNone)
-                                     return false;
-                                   const Vec2 v = g.nodes[e.a].p;
-                                   const Vec2 out = g.nodes[next[e.a]].p - v;
-                                   const double corner = ccw_angle(out, g.nodes[prev[e.a]].p - v);
-                                   const double rail = ccw_angle(out, g.nodes[e.b].p - v);
-                                   return !(rail > 0.0 && rail < corner);
-                                 }),
-                  g.edges.end());
-    if (g.edges.size() == before) return;
-    result_.stats.outward_rails += before - g.edges.size();
-    drop_dangling_rails(g);
+    std::vector<bool> drop(g.edges.size(), false);
+    bool any = false;
+    for (std::size_t k = 0; k < g.edges.size(); ++k) {
+      const CEdge& e = g.edges[k];
+      if (!e.rail || next[e.a] == kNone || prev[e.a] == kNone) continue;
+      const Vec2 v = g.nodes[e.a].p;
+      const Vec2 out = g.nodes[next[e.a]].p - v;
+      const double corner = ccw_angle(out, g.nodes[prev[e.a]].p - v);
+      const double rail = ccw_angle(out, g.nodes[e.b].p - v);
+      if (!(rail > 0.0 && rail < corner)) drop[k] = any = true;
+    }
+    if (any) result_.stats.outward_rails += drop_marked_rails(g, drop);
   }
 
   /// A rail with the same face on both sides that is no bridge of the patch's graph (its ends
@@ -1139,37 +1136,16 @@ class QuadBuilder {
   /// chain joining a hole to the rest, a keyhole face) stays: templates fill those. Parity is
   /// kept: a slit of k edges is 2k nodes of its face's cycle. True when any was dropped.
   bool drop_slit_rails(PatchGraph& g) {
-    const auto n = static_cast<std::uint32_t>(g.nodes.size());
-    std::vector<std::vector<std::uint32_t>> adjacent(n);
-    for (std::uint32_t e = 0; e < g.edges.size(); ++e) {
-      adjacent[g.edges[e].a].push_back(e);
-      adjacent[g.edges[e].b].push_back(e);
-    }
-    // Whether a reaches b without edge `skip` (breadth first).
-    std::vector<std::uint32_t> seen(n, kNone), queue;
-    const auto joined_without = [&](std::uint32_t skip) {
-      const std::uint32_t a = g.edges[skip].a, b = g.edges[skip].b;
-      queue.assign(1, a);
-      seen[a] = skip;
-      for (std::size_t k = 0; k < queue.size(); ++k) {
-        const std::uint32_t v = queue[k];
-        if (v == b) return true;
-        for (std::uint32_t e : adjacent[v]) {
-          if (e == skip) continue;
-          const std::uint32_t w = g.edges[e].a == v ? g.edges[e].b : g.edges[e].a;
-          if (seen[w] == skip) continue;
-          seen[w] = skip;
-          queue.push_back(w);
-        }
-      }
-      return false;
-    };
     std::vector<bool> drop(g.edges.size(), false);
     bool any = false;
-    for (std::uint32_t e = 0; e < g.edges.size(); ++e) {
+    for (std::size_t e = 0; e < g.edges.size(); ++e) {
       const CEdge& c = g.edges[e];
-      if (c.rail && c.face[0] != kNone && c.face[0] == c.face[1] && joined_without(e))
-        drop[e] = any = true;
+      if (!c.rail || c.face[0] == kNone || c.face[0] != c.face[1]) continue;
+      // Not a bridge: its ends are joined by the other edges.
+      UnionFind uf(g.nodes.size());
+      for (std::size_t k = 0; k < g.edges.size(); ++k)
+        if (k != e) uf.unite(g.edges[k].a, g.edges[k].b);
+      if (uf.find(c.a) == uf.find(c.b)) drop[e] = any = true;
     }
     if (any) result_.stats.slit_rails += drop_marked_rails(g, drop);
     return any;
@@ -1206,8 +1182,8 @@ class QuadBuilder {
     return any;
   }
 
-  /// Drops the edges `drop` marks, then the rails left dangling, and forgets the faces (to be
-  /// traced again). Returns how many were marked.
+  /// Drops the edges `drop` marks, then the rails left dangling, and forgets the faces if any
+  /// were traced (to be traced again). Returns how many were marked.
   std::size_t drop_marked_rails(PatchGraph& g, const std::vector<bool>& drop) {
     std::size_t kept = 0;
     for (std::size_t e = 0; e < g.edges.size(); ++e) {
