@@ -121,6 +121,7 @@ int run_mesh(const std::vector<std::string>& argv) {
     doc["faces_shared"] = r.stats.shared_faces;
     doc["narrow_fans_dropped"] = r.stats.narrow_fans;
     doc["crowded_feet_dropped"] = r.stats.crowded_feet;
+    doc["graded_rails"] = r.stats.graded_rails;
     doc["outward_rails_dropped"] = r.stats.outward_rails;
     doc["slit_rails_dropped"] = r.stats.slit_rails;
     doc["sliver_cap_rails_dropped"] = r.stats.sliver_cap_rails;

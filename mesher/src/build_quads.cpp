@@ -133,6 +133,15 @@ constexpr double kRoundFanAngle = 100.0 * kPi / 180.0;
 /// drop_crowded_feet: neighbouring rail feet on a concave arc closer than this x the element
 /// size are not both kept; gaps equal within kFootTie x the part's size are alike.
 constexpr double kMinArcFoot = 0.65;
+/// Rings round a round hole (graded_rail): the largest ratio of a ring's outer radius to its
+/// inner one. A ring of radial quads between radii r and q r is a ring of trapezoids whose
+/// parallel sides differ by q, with taper (quality.md) 2 / (1 + q): 0.83 at q = 1.4, 0.8 at
+/// 1.5. Ratios within kRingTie of it (relative) count as equal to it in every pose.
+constexpr double kRingRatio = 1.4;
+constexpr double kRingTie = 1e-9;
+/// Graded rails only round a hole whose longest mesh edge is at most this x the first ring's
+/// width (kRingRatio - 1) r0: the ring's quads no flatter than that.
+constexpr double kRingAspect = 2.0;
 constexpr double kFootTie = 1e-9;
 /// Two MA points of a patch closer than this x h (in adaptive mode h is MIN_END_WIDTH, the
 /// finest track) are one node.
@@ -1727,6 +1736,71 @@ class QuadBuilder {
       for (std::uint32_t& v : e.nodes) v = order[v];
   }
 
+  /// A coarse node's round hole (a concave circle that the cut graph maps along rays,
+  /// CutGraph::round_arcs): its radius, and the longest mesh edge on the whole circle.
+  struct HoleFoot {
+    double radius = 0.0;  ///< 0: on no round hole
+    double edge = 0.0;
+  };
+
+  std::vector<HoleFoot> round_hole_feet(PatchId pid, const PatchGraph& g) const {
+    std::vector<HoleFoot> feet(g.nodes.size());
+    if (pid.index() >= graph_.round_arcs.size()) return feet;
+    const std::vector<std::int32_t>& circle_of = graph_.round_arcs[pid.index()];
+    const auto circle = [&](const CEdge& c) -> std::int32_t {
+      const auto arc = units_[c.edge].arc;
+      return c.rail || arc < 0 ? -1 : circle_of[static_cast<std::size_t>(arc)];
+    };
+    std::map<std::int32_t, double> longest;  // per circle
+    for (const CEdge& c : g.edges) {
+      const std::int32_t k = circle(c);
+      if (k < 0) continue;
+      const EdgeNodes& en = edges_[c.edge];
+      const double edge =
+          (en.t[c.piece + 1] - en.t[c.piece]) * unit_length(c.edge) / en.count[c.piece];
+      longest[k] = std::max(longest[k], edge);
+    }
+    for (const CEdge& c : g.edges) {
+      const std::int32_t k = circle(c);
+      if (k < 0) continue;
+      for (const std::uint32_t node : {c.a, c.b})
+        feet[node] = {part_.arcs[static_cast<std::size_t>(units_[c.edge].arc)].radius, longest[k]};
+    }
+    return feet;
+  }
+
+  /// Rings round a round hole (docs/mesher.md, "Graded rails at round holes"). A rail from a
+  /// foot on a round hole of radius r0 runs along a ray from its centre; with `count` uniform
+  /// steps of len / count its first ring of quads is a ring of trapezoids whose radii differ
+  /// by (r0 + len / count) / r0. Where that exceeds kRingRatio, the rail's inner nodes are
+  /// graded: the first m steps geometric at kRingRatio (radii r0 q^k), the rest uniform, m the
+  /// least that keeps the uniform steps' ring within kRingRatio too. Not where even a rail
+  /// geometric all the way could not (a hole far smaller than h: every ring would be that
+  /// tapered instead of the first alone), nor round a hole with a mesh edge longer than
+  /// kRingAspect x the first ring's width (a few wide chords: the ring would be slivers
+  /// cutting into the hole). Returns the inner nodes' parameters along the rail (k = 1 ..
+  /// count - 1), or nothing for uniform steps.
+  static std::vector<double> graded_rail(const HoleFoot& foot, double len, std::uint32_t count) {
+    const double r0 = foot.radius, q = kRingRatio * (1.0 + kRingTie);
+    if (!(r0 > 0.0) || count < 2 || !(len > 0.0) || r0 + len / count <= q * r0) return {};
+    if (foot.edge > kRingAspect * (kRingRatio - 1.0) * r0) return {};
+    const double end = r0 + len;
+    std::uint32_t m = 0;
+    double rm = r0;
+    while (m < count && rm * q < end && rm + (end - rm) / (count - m) > q * rm) {
+      rm *= kRingRatio;
+      ++m;
+    }
+    if (m == count) return {};
+    std::vector<double> at;
+    for (std::uint32_t k = 1; k < count; ++k) {
+      const double radius = k <= m ? r0 * std::pow(kRingRatio, static_cast<double>(k))
+                                   : rm + (end - rm) * (k - m) / (count - m);
+      at.push_back((radius - r0) / len);
+    }
+    return at;
+  }
+
   std::vector<Pending> prepare_patch(PatchId pid) {
     const Patch& patch = part_.patches[pid.index()];
     PatchGraph& g = patches_[pid.index()];
@@ -1738,10 +1812,15 @@ class QuadBuilder {
     std::map<std::uint32_t, Vec2> pos2(g.boundary_2d);
     for (const CNode& c : g.nodes)
       if (c.ma && c.mesh != kNone) pos2[c.mesh] = c.p;
+    const std::vector<HoleFoot> hole_feet = round_hole_feet(pid, g);
     for (CEdge& c : g.edges) {
       if (!c.rail) continue;
+      const std::vector<double> at =
+          graded_rail(hole_feet[c.a], distance(g.nodes[c.a].p, g.nodes[c.b].p), c.count);
+      if (!at.empty()) ++result_.stats.graded_rails;
       for (std::uint32_t k = 1; k < c.count; ++k) {
-        const Vec2 p = lerp(g.nodes[c.a].p, g.nodes[c.b].p, static_cast<double>(k) / c.count);
+        const double t = at.empty() ? static_cast<double>(k) / c.count : at[k - 1];
+        const Vec2 p = lerp(g.nodes[c.a].p, g.nodes[c.b].p, t);
         c.inner.push_back(add_node(patch.frame.to_3d(p)));
         pos2[c.inner.back()] = p;
       }
