@@ -3173,6 +3173,19 @@ void optimize_nodes(std::vector<Vec2>& pos,
     }
     return f;
   };
+  // Whether an edge at v is now shorter than kOptimizeEdgeFloor x its target (the condition
+  // numbers do not see size, and a step may close an edge that is already tiny).
+  const auto shortens = [&](std::uint32_t v) {
+    for (std::uint32_t q : around[v])
+      for (std::size_t k = 0; k < 4; ++k) {
+        if (quads[q][k] != v) continue;
+        const std::uint32_t next = quads[q][(k + 1) % 4], prev = quads[q][(k + 3) % 4];
+        if (distance(pos[v], pos[next]) < kOptimizeEdgeFloor * target[q][k] ||
+            distance(pos[v], pos[prev]) < kOptimizeEdgeFloor * target[q][(k + 3) % 4])
+          return true;
+      }
+    return false;
+  };
   // One visit of node v: a Newton step, halved until it is taken or too small.
   const auto visit = [&](std::uint32_t v) {
     Vec2 g;
@@ -3193,6 +3206,7 @@ void optimize_nodes(std::vector<Vec2>& pos,
     for (double t = 1.0; t > 1e-3 && !kept; t *= 0.5) {
       pos[v] = old + t * step;
       if (pos[v] == old) break;
+      if (shortens(v)) continue;
       if (!(objective(v, nullptr, nullptr) < f0)) continue;
       double after = std::numeric_limits<double>::infinity();
       for (std::uint32_t q : around[v]) after = std::min(after, jac(q));

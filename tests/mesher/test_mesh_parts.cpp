@@ -1039,6 +1039,15 @@ TEST_CASE("a rail with one face on both sides is dropped, in every pose", "[mesh
                    [](const MeshPartResult& r) { return r.stats.slit_rails > 0; });
 }
 
+TEST_CASE("the angle optimisation does not close an edge at a micro-notch", "[mesh][smooth]") {
+  // A fuzzed blob (session 32's blob_025) with runs of vertices 1/200 of its spacing apart:
+  // a template left an edge of 2e-5 at a notch, and optimize_nodes' Newton steps (condition
+  // numbers, blind to size) closed it to 2.5e-7, two nodes closer than rule 5's 1e-9 x the
+  // part's size: refused in every pose. A step may no longer bring an edge below a quarter of
+  // its length at the start (kOptimizeEdgeFloor): valid in three poses, the same count.
+  check_three_poses(read_brep_json(test_data_dir() + "/parts/micro_notch_blob.json"), 0.0);
+}
+
 TEST_CASE("the rails that cut off a needle are dropped, in every pose", "[mesh][poses]") {
   // Fuzzed outlines (session 32) with needles: a sliver blob of aspect 63 and a bent part of
   // three patches, each with a tooth whose tip is a few hundredths of a degree. Rails across
