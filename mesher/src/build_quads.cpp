@@ -1783,7 +1783,7 @@ class QuadBuilder {
   static std::vector<double> graded_rail(const HoleFoot& foot, double len, std::uint32_t count) {
     const double r0 = foot.radius, q = kRingRatio * (1.0 + kRingTie);
     if (!(r0 > 0.0) || count < 2 || !(len > 0.0) || r0 + len / count <= q * r0) return {};
-    if (foot.edge > kRingAspect * (kRingRatio - 1.0) * r0) return {};
+    if (foot.edge > kRingAspect * (kRingRatio - 1.0) * r0 * (1.0 + kRingTie)) return {};
     const double end = r0 + len;
     std::uint32_t m = 0;
     double rm = r0;
