@@ -428,6 +428,21 @@ class QuadBuilder {
     const PartArc& arc = part_.arcs[static_cast<std::size_t>(un.arc)];
     return arc.radius * arc.span;
   }
+  /// The length of a boundary piece (along its unit: straight, or along the arc).
+  double piece_length(const CEdge& c) const {
+    const EdgeNodes& en = edges_[c.edge];
+    return (en.t[c.piece + 1] - en.t[c.piece]) * unit_length(c.edge);
+  }
+
+  /// The round hole a boundary piece of patch pid lies on: its circle's index in
+  /// CutGraph::round_arcs (a concave circle mapped along rays), or -1 (a rail, a straight
+  /// piece, another arc, or a cut graph made by hand without round_arcs).
+  std::int32_t round_circle(PatchId pid, const CEdge& c) const {
+    const auto arc = units_[c.edge].arc;
+    if (c.rail || arc < 0 || pid.index() >= graph_.round_arcs.size()) return -1;
+    return graph_.round_arcs[pid.index()][static_cast<std::size_t>(arc)];
+  }
+
   /// The point at parameter t of a unit (from its a to its b).
   Vec3 unit_point(std::size_t u, double t) const {
     const Unit& un = units_[u];
@@ -969,12 +984,6 @@ class QuadBuilder {
       if (loops.empty() || g.edges[loops.back().back()].b != g.edges[i].a) loops.emplace_back();
       loops.back().push_back(i);
     }
-    // Per boundary edge: its round hole's circle (CutGraph::round_arcs), or -1.
-    const auto circle_of = [&](const CEdge& e) -> int {
-      const Unit& un = units_[e.edge];
-      if (un.arc < 0 || pid.index() >= graph_.round_arcs.size()) return -1;  // or made by hand
-      return graph_.round_arcs[pid.index()][static_cast<std::size_t>(un.arc)];
-    };
     std::vector<bool> drop(g.edges.size(), false);
     struct Foot {
       double at;           // length along the run from its start
@@ -984,8 +993,8 @@ class QuadBuilder {
     };
     for (const std::vector<std::uint32_t>& loop : loops) {
       const std::size_t n = loop.size();
-      std::vector<int> circle(n);
-      for (std::size_t i = 0; i < n; ++i) circle[i] = circle_of(g.edges[loop[i]]);
+      std::vector<std::int32_t> circle(n);
+      for (std::size_t i = 0; i < n; ++i) circle[i] = round_circle(pid, g.edges[loop[i]]);
       // Runs: maximal stretches of one circle. Start after a change, if the loop has one.
       std::size_t start = 0;
       while (start < n && circle[start] == circle[(start + n - 1) % n]) ++start;
@@ -1007,7 +1016,7 @@ class QuadBuilder {
           const double t = en.t[e.piece + ((k < len) != e.forward ? 1 : 0)];
           if (!rails_at[node].empty())
             feet.push_back({at, local_size(e.edge, t), node, !closed && (k == 0 || k == len)});
-          if (k < len) at += (en.t[e.piece + 1] - en.t[e.piece]) * unit_length(e.edge);
+          if (k < len) at += piece_length(e);
         }
         const double total = at;
         const std::size_t m0 = feet.size();
@@ -1461,10 +1470,6 @@ class QuadBuilder {
       for (std::uint32_t k : runs[static_cast<std::size_t>(r)]) count[r] += half_count(g, hs[k]);
     if (count[0] == count[1]) return kNone;
     const int fewer = count[0] < count[1] ? 0 : 1;
-    const auto piece_length = [&](const CEdge& c) {
-      const EdgeNodes& en = edges_[c.edge];
-      return (en.t[c.piece + 1] - en.t[c.piece]) * unit_length(c.edge);
-    };
     // The other run's mean edge, which the new edges should not fall far below.
     double other = 0.0;
     for (std::uint32_t k : runs[static_cast<std::size_t>(1 - fewer)])
@@ -1745,26 +1750,17 @@ class QuadBuilder {
 
   std::vector<HoleFoot> round_hole_feet(PatchId pid, const PatchGraph& g) const {
     std::vector<HoleFoot> feet(g.nodes.size());
-    if (pid.index() >= graph_.round_arcs.size()) return feet;
-    const std::vector<std::int32_t>& circle_of = graph_.round_arcs[pid.index()];
-    const auto circle = [&](const CEdge& c) -> std::int32_t {
-      const auto arc = units_[c.edge].arc;
-      return c.rail || arc < 0 ? -1 : circle_of[static_cast<std::size_t>(arc)];
-    };
     std::map<std::int32_t, double> longest;  // per circle
     for (const CEdge& c : g.edges) {
-      const std::int32_t k = circle(c);
-      if (k < 0) continue;
-      const EdgeNodes& en = edges_[c.edge];
-      const double edge =
-          (en.t[c.piece + 1] - en.t[c.piece]) * unit_length(c.edge) / en.count[c.piece];
-      longest[k] = std::max(longest[k], edge);
+      const std::int32_t k = round_circle(pid, c);
+      if (k >= 0)
+        longest[k] = std::max(longest[k], piece_length(c) / edges_[c.edge].count[c.piece]);
     }
     for (const CEdge& c : g.edges) {
-      const std::int32_t k = circle(c);
+      const std::int32_t k = round_circle(pid, c);
       if (k < 0) continue;
-      for (const std::uint32_t node : {c.a, c.b})
-        feet[node] = {part_.arcs[static_cast<std::size_t>(units_[c.edge].arc)].radius, longest[k]};
+      const double radius = part_.arcs[static_cast<std::size_t>(units_[c.edge].arc)].radius;
+      feet[c.a] = feet[c.b] = {radius, longest[k]};
     }
     return feet;
   }
