@@ -203,7 +203,8 @@ class QuadBuilder {
         graph_(graph),
         h_(options.size),
         law_(options.adaptive),
-        sliver_caps_(options.drop_sliver_caps) {
+        sliver_caps_(options.drop_sliver_caps),
+        needle_tips_(options.needle_tips) {
     if (!(h_ > 0.0) && !law_) throw InternalError("mesher: the element size must be positive");
   }
 
@@ -1686,7 +1687,7 @@ class QuadBuilder {
     const auto fill_jobs = [&](const std::vector<std::size_t>& which) {
       parallel_for(which.size(), [&](std::size_t w) {
         const auto [p, f] = jobs[which[w]];
-        filled[p][f] = fill_face(pending[p][f].in, pending[p][f].where);
+        filled[p][f] = fill_face(pending[p][f].in, pending[p][f].where, needle_tips_);
       });
     };
     std::vector<std::size_t> first_pass;
@@ -1901,6 +1902,7 @@ class QuadBuilder {
       const FaceMesh& fm = filled[f];
       ++result_.stats.faces;
       ++result_.stats.by_template[static_cast<std::size_t>(fm.kind)];
+      if (fm.min_jacobian <= mesher_detail::kLastResortJacobian) ++result_.stats.needle_tip_faces;
       std::vector<std::uint32_t>& ids = pending[f].mesh_ids;
       for (const Vec2& p : fm.interior) ids.push_back(add_node(patch.frame.to_3d(p)));
       for (const auto& q : fm.quads) {
@@ -1934,6 +1936,7 @@ class QuadBuilder {
   std::vector<PatchGraph> patches_;
   const TrackWidthLaw* law_ = nullptr;
   bool sliver_caps_ = false;  ///< QuadOptions::drop_sliver_caps
+  bool needle_tips_ = false;  ///< QuadOptions::needle_tips
   /// Per arc, its discretisation edges: parameters of the edge's a and b along the arc.
   std::vector<std::vector<std::tuple<double, double, EdgeId>>> arc_edges_;
 };

@@ -2338,7 +2338,31 @@ std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
 
 }  // namespace
 
-FaceMesh fill_face(const FaceInput& face, const std::string& where) {
+namespace {
+
+/// The least worst corner fill_face accepts from its best template: kLastResortJacobian, or
+/// kNeedleShare x the sine of the face's sharpest corner where that is the smaller (a face
+/// whose outline has a needle's tip, a boundary corner of a thousandth of a degree on a
+/// fuzzed sawtooth: every quad at that node has that corner, so no template can do better
+/// than its sine), never below kDegenerateJacobian.
+double last_resort_jacobian(const std::vector<Vec2>& cycle) {
+  const std::size_t n = cycle.size();
+  double sharpest = 1.0;  // the least sine of a convex corner (at most 90 degrees)
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 a = cycle[(i + n - 1) % n] - cycle[i];
+    const Vec2 b = cycle[(i + 1) % n] - cycle[i];
+    const double la = norm(a);
+    const double lb = norm(b);
+    if (la <= 0.0 || lb <= 0.0 || dot(a, b) <= 0.0) continue;
+    const double turn = cross(b, a) / (la * lb);  // counter-clockwise cycle: > 0 when convex
+    if (turn > 0.0) sharpest = std::min(sharpest, turn);
+  }
+  return std::max(kDegenerateJacobian, std::min(kLastResortJacobian, kNeedleShare * sharpest));
+}
+
+}  // namespace
+
+FaceMesh fill_face(const FaceInput& face, const std::string& where, bool needle_tips) {
   const std::size_t n = face.cycle.size();
   if (n < 4 || n % 2 != 0) {
     throw InternalError("mesher: " + where + " has " + std::to_string(n) +
@@ -2360,7 +2384,9 @@ FaceMesh fill_face(const FaceInput& face, const std::string& where) {
     outline(d, " ");
     std::fprintf(stderr, "%s\n", d.str().c_str());
   }
-  if (best && best->min_jacobian > kLastResortJacobian) return *best;
+  if (best &&
+      best->min_jacobian > (needle_tips ? last_resort_jacobian(face.cycle) : kLastResortJacobian))
+    return *best;
   std::ostringstream s;
   s << "mesher: no template gives valid quads in " << where << " (" << n
     << " boundary nodes, " << face.sides.size() << " sides";

@@ -122,7 +122,7 @@ bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t);
 /// Meshes one face: the first template that applies and gives quads whose scaled Jacobian is
 /// above kAcceptJacobian wins; otherwise the best valid one. Throws InternalError (with `where`
 /// in the message) when no template gives valid quads.
-FaceMesh fill_face(const FaceInput& face, const std::string& where);
+FaceMesh fill_face(const FaceInput& face, const std::string& where, bool needle_tips = false);
 
 /// The quads of a cavity of a finished mesh (a polygon of any shape, read as one boundary
 /// side): the quad and ring templates, corner grids, then split from either parity and cut
@@ -372,5 +372,11 @@ constexpr double kMinValidJacobian = 1e-3;
 /// of 1/500 of an element between two holes (a 0.001 bridge) leaves 4.5e-4 at its ends.
 /// Still five orders of magnitude above what the frame round trip changes.
 constexpr double kLastResortJacobian = 1e-5;
+/// Where the face's own outline has a corner whose sine is below kLastResortJacobian / kNeedleShare
+/// (a needle's tip), the last resort is kNeedleShare x that sine (fill.cpp,
+/// last_resort_jacobian), but never below kDegenerateJacobian: the frame round trip changes a
+/// corner's sine by some 1e-12 on such parts, so this keeps three orders of margin.
+constexpr double kNeedleShare = 1e-2;
+constexpr double kDegenerateJacobian = 1e-9;
 
 }  // namespace laytracks::mesher_detail

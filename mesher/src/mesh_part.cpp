@@ -158,8 +158,9 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
   qo.adaptive = law.get();
   // A face that no template fills is most often a needle of a sawtooth outline cut off by
   // rails: a second attempt drops those rails (docs/mesher.md, "Sliver caps"). Only then, so
-  // that every part meshed at the first attempt keeps its mesh; when the second attempt fails
-  // too, the first one's message stands.
+  // that every part meshed at the first attempt keeps its mesh. A third attempt lets a face
+  // whose own outline has a needle's tip (a corner of a thousandth of a degree) keep a quad
+  // as thin as that tip ("Needle tips"). When all fail, the first one's message stands.
   QuadResult quads;
   try {
     quads = build_quads(part, graph, qo);
@@ -169,7 +170,12 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
     try {
       quads = build_quads(part, graph, qo);
     } catch (const InternalError&) {
-      std::rethrow_exception(first);
+      qo.needle_tips = true;
+      try {
+        quads = build_quads(part, graph, qo);
+      } catch (const InternalError&) {
+        std::rethrow_exception(first);
+      }
     }
   }
   r.mesh = std::move(quads.mesh);

@@ -1057,3 +1057,15 @@ TEST_CASE("the rails that cut off a needle are dropped, in every pose", "[mesh][
   check_test_parts({{"sliver_needle.json", 0.0}, {"sliver_needle_bent.json", 0.0}},
                    [](const MeshPartResult& r) { return r.stats.sliver_cap_rails > 0; });
 }
+
+TEST_CASE("a face with a needle's tip keeps a quad as thin as the tip, in every pose",
+          "[mesh][poses]") {
+  // Sawtooth outlines of session 30's fuzzing (scripts/stress/sawtooth: blob_046, bent_095)
+  // with tips of 3e-2 and 9e-4 degrees: a face holding such a tip has no quad better than
+  // the tip's sine (5e-4 and 1.5e-5), and the best templates' came to 7.9e-6 and 6.6e-7,
+  // under kLastResortJacobian: refused in both earlier attempts. The third attempt takes a
+  // face's best template down to kNeedleShare of its sharpest corner's sine: valid meshes
+  // (quality.md: every corner above 0), the same in three poses, and the report counts them.
+  check_test_parts({{"needle_tip_blob.json", 0.0}, {"needle_tip_bent.json", 0.0}},
+                   [](const MeshPartResult& r) { return r.stats.needle_tip_faces > 0; });
+}

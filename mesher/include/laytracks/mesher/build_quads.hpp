@@ -22,6 +22,9 @@ struct QuadOptions {
   /// The second attempt after a face no template fills (mesh_part): the rails that cut off a
   /// needle go too (docs/mesher.md, "Sliver caps").
   bool drop_sliver_caps = false;
+  /// The third attempt (mesh_part): a face whose outline has a needle's tip takes its best
+  /// template down to a share of that tip's sine (mesher_detail::kNeedleShare).
+  bool needle_tips = false;
 };
 
 /// refill_cavities tries quads below this in uniform mode, below the other in adaptive mode:
@@ -50,6 +53,8 @@ struct QuadStats {
   std::size_t outward_rails = 0;   ///< rails that left their boundary node outside the patch
   std::size_t slit_rails = 0;      ///< rails with one face on both sides: dropped
   std::size_t sliver_cap_rails = 0;  ///< rails that cut off a needle: dropped
+  /// faces kept with a corner as thin as a needle's tip of their outline (QuadOptions::needle_tips)
+  std::size_t needle_tip_faces = 0;
   std::size_t fan_clusters = 0;    ///< MA nodes merged into a deeper one (merge_fan_clusters)
   /// rail feet moved onto a smooth B-Rep vertex within kTinyEndPiece x h of them
   std::size_t smooth_vertex_feet = 0;
