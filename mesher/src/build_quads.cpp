@@ -257,6 +257,7 @@ class QuadBuilder {
     for (std::size_t p = 0; p < np; ++p) {
       if (law_) adaptive_rail_counts(PatchId(p), patches_[p]);
       drop_outward_rails(patches_[p]);
+      if (needle_tips_) drop_crossing_rails(patches_[p]);
       bridge_loose_loops(patches_[p]);
       trace_faces(PatchId(p), patches_[p]);
       // Each round drops rails for good, but bridging may add rails back: a few rounds.
@@ -1198,6 +1199,35 @@ class QuadBuilder {
         if (g.edges[h.edge].rail) drop[h.edge] = any = true;
     }
     if (any) result_.stats.sliver_cap_rails += drop_marked_rails(g, drop);
+    return any;
+  }
+
+  /// In the third attempt (QuadOptions::needle_tips), a rail that crosses another edge
+  /// of the patch's graph (a boundary piece of a sawtooth's tooth far narrower than h, or
+  /// another rail) goes, with the rails left dangling: no face between such edges is a simple
+  /// polygon ("a region that no rail reaches", or no template: docs/mesher.md, "Needle tips").
+  /// True when any was dropped.
+  bool drop_crossing_rails(PatchGraph& g) {
+    const std::size_t m = g.edges.size();
+    std::vector<Box2> box(m);
+    for (std::size_t e = 0; e < m; ++e) {
+      box[e].add(g.nodes[g.edges[e].a].p);
+      box[e].add(g.nodes[g.edges[e].b].p);
+    }
+    std::vector<bool> drop(m, false);
+    bool any = false;
+    for (std::size_t e = 0; e < m; ++e) {
+      if (!g.edges[e].rail) continue;
+      const Vec2 p = g.nodes[g.edges[e].a].p, q = g.nodes[g.edges[e].b].p;
+      for (std::size_t k = 0; k < m && !drop[e]; ++k) {
+        if (k == e || box[k].lo.x > box[e].hi.x || box[e].lo.x > box[k].hi.x ||
+            box[k].lo.y > box[e].hi.y || box[e].lo.y > box[k].hi.y)
+          continue;
+        if (mesher_detail::segments_meet(p, q, g.nodes[g.edges[k].a].p, g.nodes[g.edges[k].b].p))
+          drop[e] = any = true;
+      }
+    }
+    if (any) result_.stats.crossing_rails += drop_marked_rails(g, drop);
     return any;
   }
 

@@ -158,9 +158,10 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
   qo.adaptive = law.get();
   // A face that no template fills is most often a needle of a sawtooth outline cut off by
   // rails: a second attempt drops those rails (docs/mesher.md, "Sliver caps"). Only then, so
-  // that every part meshed at the first attempt keeps its mesh. A third attempt lets a face
-  // whose own outline has a needle's tip (a corner of a thousandth of a degree) keep a quad
-  // as thin as that tip ("Needle tips"). When all fail, the first one's message stands.
+  // that every part meshed at the first attempt keeps its mesh. A third attempt also drops
+  // the rails that cross another edge (in a sawtooth's teeth), and lets a face whose own
+  // outline has a needle's tip (a corner of a thousandth of a degree) keep a quad as thin as
+  // that tip ("Needle tips"). When all fail, the first one's message stands.
   QuadResult quads;
   try {
     quads = build_quads(part, graph, qo);

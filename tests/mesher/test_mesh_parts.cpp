@@ -1058,6 +1058,17 @@ TEST_CASE("the rails that cut off a needle are dropped, in every pose", "[mesh][
                    [](const MeshPartResult& r) { return r.stats.sliver_cap_rails > 0; });
 }
 
+TEST_CASE("rails that cross a tooth of a sawtooth outline are dropped, in every pose",
+          "[mesh][poses]") {
+  // Sawtooth blobs of session 30's fuzzing (blob_015 with a hole, blob_040 with four), refused
+  // in every pose as "a region that no rail reaches": in teeth far narrower than h, rails
+  // crossed the teeth's boundary pieces or one another, and the faces between them ran
+  // clockwise or through themselves. The third attempt drops every rail that crosses another
+  // edge of its patch's graph (drop_crossing_rails), then bridges and traces again.
+  check_test_parts({{"crossing_rails_blob.json", 0.0}, {"crossing_rails_holes.json", 0.0}},
+                   [](const MeshPartResult& r) { return r.stats.crossing_rails > 0; });
+}
+
 TEST_CASE("a face with a needle's tip keeps a quad as thin as the tip, in every pose",
           "[mesh][poses]") {
   // Sawtooth outlines of session 30's fuzzing (scripts/stress/sawtooth: blob_046, bent_095)

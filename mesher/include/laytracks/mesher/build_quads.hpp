@@ -53,6 +53,8 @@ struct QuadStats {
   std::size_t outward_rails = 0;   ///< rails that left their boundary node outside the patch
   std::size_t slit_rails = 0;      ///< rails with one face on both sides: dropped
   std::size_t sliver_cap_rails = 0;  ///< rails that cut off a needle: dropped
+  /// rails crossing another edge of their patch's graph: dropped, in the third attempt
+  std::size_t crossing_rails = 0;
   /// faces kept with a corner as thin as a needle's tip of their outline (QuadOptions::needle_tips)
   std::size_t needle_tip_faces = 0;
   std::size_t fan_clusters = 0;    ///< MA nodes merged into a deeper one (merge_fan_clusters)
