@@ -11,6 +11,7 @@ packages=(
   nlohmann-json3-dev        # the B-Rep JSON reader
   catch2                    # tests (v2)
   python3-meshio gmsh       # mesh-writer tests: meshio reads every format back, gmsh opens .msh
+  assimp-utils              # and assimp reads .obj and .off (meshio reads OFF only as triangles)
 )
 
 missing=()

@@ -140,7 +140,19 @@ import math, sys
 path = sys.argv[1]
 sets = []
 data = {}
-if path.endswith(".off"):
+if path.endswith(".assimp.obj"):
+    # What assimp exported from our .obj or .off: v lines, then f lines of "i//n" (1-based).
+    points = []
+    cells = []
+    with open(path) as f:
+        for line in f:
+            w = line.split()
+            if w and w[0] == "v":
+                points.append([float(x) for x in w[1:4]])
+            elif w and w[0] == "f":
+                c = [int(x.split("/")[0]) - 1 for x in w[1:]]
+                cells.append(("polygon%d" % len(c), c))
+elif path.endswith(".off"):
     words = []
     with open(path) as f:
         lines = [l.split("#")[0] for l in f]
@@ -304,6 +316,41 @@ TEST_CASE("every format reads back in meshio with the same nodes and cells", "[i
       const fs::path file = d / ((folded ? "fold" : "grid") + ext);
       write_mesh(file.string(), f.part, f.mesh);
       check_summary(independent_summary(file), f.mesh, ext);
+    }
+  }
+}
+
+TEST_CASE("assimp reads our .obj and .off back as quads, with the same nodes", "[io][mesh]") {
+  // meshio reads only triangles from OFF; assimp (Debian's assimp-utils, installed by
+  // scripts/setup.sh) is a second reader for both OpenMesh formats. `assimp export` reads the
+  // file with its own importer and writes it as OBJ, which the script above parses. assimp
+  // keeps coordinates in single precision: sums to 1e-6.
+  const fs::path d = fresh_dir("assimp");
+  const auto near = [](double a, double b) {
+    return std::fabs(a - b) <= 1e-6 * std::fmax(1.0, std::fabs(b));
+  };
+  for (const bool folded : {false, true}) {
+    const Fixture f = folded ? fold() : grid();
+    for (const std::string ext : {".obj", ".off"}) {
+      INFO(ext << (folded ? " fold" : " grid"));
+      const fs::path file = d / ((folded ? "fold" : "grid") + ext);
+      const fs::path back = d / ((folded ? "fold" : "grid") + ext.substr(1) + ".assimp.obj");
+      write_mesh(file.string(), f.part, f.mesh);
+      std::string output;
+      const int status =
+          run("assimp export '" + file.string() + "' '" + back.string() + "'", &output);
+      INFO("assimp said:\n" << output << "(install it with scripts/setup.sh: assimp-utils)");
+      REQUIRE(status == 0);
+      const Summary s = independent_summary(back);
+      CHECK(s.cells == f.mesh.elements.size());
+      CHECK(s.type("polygon4") == f.mesh.elements.size());
+      CHECK(s.types.size() == 1);
+      // OBJ's faces index a vertex list per face group; OFF's share them as we wrote them.
+      if (ext == ".off") {
+        CHECK(s.points == f.mesh.nodes.size());
+        CHECK(near(s.sum, coordinate_sum(f.mesh)));
+      }
+      CHECK(near(s.cellsum, cell_sum(f.mesh)));
     }
   }
 }
