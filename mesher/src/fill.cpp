@@ -1009,10 +1009,14 @@ double ccw_angle(Vec2 from, Vec2 to) {
 
 namespace {
 
-/// A polygon read by its corners: when exactly four nodes turn by more than 30 degrees
+/// A polygon read by its corners: when exactly four nodes turn by more than 30.5 degrees
 /// (interior angle below kCornerAngle) and none is reflex, its four sides as a strip
-/// (cap1 from the first corner, then rail1, cap2, rail2), `rotate` sides later.
-constexpr double kCornerAngle = 150.0 * kPi / 180.0;
+/// (cap1 from the first corner, then rail1, cap2, rail2), `rotate` sides later. Off round
+/// values (150 degrees until session 34): a regular 12-gon's corners, an arc's 30-degree
+/// chords, are 150 degrees exactly, below or above it by the pose's rounding, and a fuzzed
+/// rounded rectangle far smaller than its element (fuzz seed 34034, extreme_006) read a
+/// reflex cut's piece as four sides when turned and as none as given: 136 quads against 213.
+constexpr double kCornerAngle = 149.5 * kPi / 180.0;
 
 /// The corners of a polygon (interior angle below kCornerAngle), in order; none when a node
 /// is reflex beyond 200 degrees. How corner_strip and fill_sided read a face.

@@ -1069,6 +1069,15 @@ TEST_CASE("rails that cross a tooth of a sawtooth outline are dropped, in every 
                    [](const MeshPartResult& r) { return r.stats.crossing_rails > 0; });
 }
 
+TEST_CASE("a corner of exactly 150 degrees reads alike in every pose", "[mesh][poses]") {
+  // A rounded rectangle of fuzz seed 34034 (extreme_006) whose element size is capped at a
+  // quarter of its extent: its arcs' chords turn by 30 degrees, and a reflex cut's piece with
+  // two such corners was read as four sides turned (the chords' 150 degrees a hair under the
+  // bound) and as none as given (a hair over): 136 quads against 213. The bound is off the
+  // round value since session 34 (kCornerAngle = 149.5 degrees): the same count in every pose.
+  check_three_poses(read_brep_json(test_data_dir() + "/parts/corner_150_rrect.json"), 0.2);
+}
+
 TEST_CASE("a face with a needle's tip keeps a quad as thin as the tip, in every pose",
           "[mesh][poses]") {
   // Sawtooth outlines of session 30's fuzzing (scripts/stress/sawtooth: blob_046, bent_095)
