@@ -291,7 +291,14 @@ VoronoiDiagram segment_voronoi(const Polygon2& polygon, VoronoiBackend backend) 
   std::string why;
   try {
     std::optional<VoronoiDiagram> vd = segment_voronoi_boost(polygon, &why);
-    if (vd) return std::move(*vd);
+    // A vertex left without a finite position (Boost's diagram of exactly parallel sides, a
+    // fuzzed grid outline's one-cell tooth, whose cocircular vertex the flips gave sites with
+    // no common disk) would drop its medial edges: CGAL does the polygon instead.
+    const auto finite = [](const VoronoiVertex& v) {
+      return std::isfinite(v.position.x) && std::isfinite(v.position.y);
+    };
+    if (vd && std::all_of(vd->vertices.begin(), vd->vertices.end(), finite)) return std::move(*vd);
+    if (vd) why = "a Voronoi vertex without a finite position";
   } catch (const InternalError& e) {
     if (backend == VoronoiBackend::BoostOnly) throw;
     why = e.what();
