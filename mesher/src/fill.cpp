@@ -2350,16 +2350,10 @@ namespace {
 /// fuzzed sawtooth: every quad at that node has that corner, so no template can do better
 /// than its sine), never below kDegenerateJacobian.
 double last_resort_jacobian(const std::vector<Vec2>& cycle) {
-  const std::size_t n = cycle.size();
-  double sharpest = 1.0;  // the least sine of a convex corner (at most 90 degrees)
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec2 a = cycle[(i + n - 1) % n] - cycle[i];
-    const Vec2 b = cycle[(i + 1) % n] - cycle[i];
-    const double la = norm(a);
-    const double lb = norm(b);
-    if (la <= 0.0 || lb <= 0.0 || dot(a, b) <= 0.0) continue;
-    const double turn = cross(b, a) / (la * lb);  // counter-clockwise cycle: > 0 when convex
-    if (turn > 0.0) sharpest = std::min(sharpest, turn);
+  double sharpest = 1.0;  // the least sine of a corner of at most 90 degrees
+  for (std::size_t i = 0; i < cycle.size(); ++i) {
+    const double a = interior_angle(cycle, i);
+    if (a < 0.5 * kPi) sharpest = std::min(sharpest, std::sin(a));
   }
   return std::max(kDegenerateJacobian, std::min(kLastResortJacobian, kNeedleShare * sharpest));
 }

@@ -163,20 +163,16 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
   // outline has a needle's tip (a corner of a thousandth of a degree) keep a quad as thin as
   // that tip ("Needle tips"). When all fail, the first one's message stands.
   QuadResult quads;
-  try {
-    quads = build_quads(part, graph, qo);
-  } catch (const InternalError&) {
-    const std::exception_ptr first = std::current_exception();
-    qo.drop_sliver_caps = true;
+  std::exception_ptr first_failure;
+  for (int attempt = 0;; ++attempt) {
+    qo.drop_sliver_caps = attempt >= 1;
+    qo.needle_tips = attempt >= 2;
     try {
       quads = build_quads(part, graph, qo);
+      break;
     } catch (const InternalError&) {
-      qo.needle_tips = true;
-      try {
-        quads = build_quads(part, graph, qo);
-      } catch (const InternalError&) {
-        std::rethrow_exception(first);
-      }
+      if (!first_failure) first_failure = std::current_exception();
+      if (attempt == 2) std::rethrow_exception(first_failure);
     }
   }
   r.mesh = std::move(quads.mesh);
