@@ -72,6 +72,12 @@ constexpr double kTinyEndPiece = 0.1;
 /// than kDiskGap (a regular hexagon's six rails stay: its wedges are good quads).
 constexpr std::size_t kDiskRails = 8;
 constexpr double kDiskGap = 60.0 * kPi / 180.0;
+/// drop_disk_rails on a nearly round loop: the rails' MA ends all within this x the shortest
+/// rail of their centroid, and every boundary node's interior angle within
+/// kDiskRoundMin..kDiskRoundMax (fill_ogrid's kRoundMin, kRoundMax).
+constexpr double kDiskSpread = 0.1;
+constexpr double kDiskRoundMin = 120.0 * kPi / 180.0;
+constexpr double kDiskRoundMax = 200.0 * kPi / 180.0;
 /// drop_sliver_caps: a cap face thinner than this (twice its area over its perimeter squared)
 /// loses its rails. The fuzzed needles that no template filled were at 1.5e-5 to 8.2e-4; at
 /// 1e-2 ten of the 402 set meshes changed (faceted cylinders' thin facets, an arc's base), at
@@ -710,18 +716,40 @@ class QuadBuilder {
   /// polygonised circle: its axis is that point), would be cut into wedges whose quads shrink
   /// to slivers at the centre. Its rails go: the patch is one face, which the O-grid template
   /// meshes. Nodes on its edges stay (rails of other patches may land there).
+  /// A nearly round outline (a circle's vertices off it by a little, inputcircle of CGAL's
+  /// straight-skeleton data: 34 vertices, radius 50 +- 1) has a small tree for its axis, not a
+  /// point, and its rails end at several MA nodes of that tree: a pole of 16 quads of worst
+  /// corner 0.377 at the centre. Rails whose ends all lie within kDiskSpread x the shortest
+  /// rail of their centroid are read the same way when the loop is round (every boundary
+  /// node's interior angle within kDiskRoundMin..kDiskRoundMax, the O-grid's own test).
   void drop_disk_rails(PatchId pid, PatchGraph& g) {
     if (part_.patches[pid.index()].loops.size() != 1) return;
-    std::uint32_t centre = kNone;
+    std::vector<std::uint32_t> ends;
+    double shortest = std::numeric_limits<double>::infinity();
+    for (const CEdge& e : g.edges) {
+      if (!e.rail) continue;
+      if (!g.nodes[e.b].ma) return;
+      ends.push_back(e.b);
+      shortest = std::min(shortest, distance(g.nodes[e.a].p, g.nodes[e.b].p));
+    }
+    if (ends.size() < kDiskRails) return;
+    std::sort(ends.begin(), ends.end());
+    ends.erase(std::unique(ends.begin(), ends.end()), ends.end());
+    Vec2 centre = g.nodes[ends.front()].p;
+    if (ends.size() > 1) {
+      Vec2 sum{0.0, 0.0};
+      for (std::uint32_t m : ends) sum = sum + g.nodes[m].p;
+      centre = (1.0 / static_cast<double>(ends.size())) * sum;
+      double spread = 0.0;
+      for (std::uint32_t m : ends) spread = std::max(spread, distance(g.nodes[m].p, centre));
+      if (spread > kDiskSpread * shortest || !round_loop(g)) return;
+    }
     std::vector<double> angles;
     for (const CEdge& e : g.edges) {
       if (!e.rail) continue;
-      if (centre == kNone) centre = e.b;
-      if (e.b != centre) return;
-      const Vec2 d = g.nodes[e.a].p - g.nodes[e.b].p;
+      const Vec2 d = g.nodes[e.a].p - centre;
       angles.push_back(std::atan2(d.y, d.x));
     }
-    if (angles.size() < kDiskRails) return;
     std::sort(angles.begin(), angles.end());
     double widest = angles.front() + 2.0 * kPi - angles.back();
     for (std::size_t k = 1; k < angles.size(); ++k) widest = std::max(widest, angles[k] - angles[k - 1]);
@@ -729,6 +757,31 @@ class QuadBuilder {
     g.edges.erase(std::remove_if(g.edges.begin(), g.edges.end(), [](const CEdge& e) { return e.rail; }),
                   g.edges.end());
     ++result_.stats.disk_patches;
+  }
+
+  /// Whether the patch's one loop, as its boundary nodes, turns by an interior angle within
+  /// kDiskRoundMin..kDiskRoundMax at every node.
+  static bool round_loop(const PatchGraph& g) {
+    std::map<std::uint32_t, std::uint32_t> next;
+    for (const CEdge& e : g.edges)
+      if (!e.rail) next[e.a] = e.b;
+    if (next.size() < 3) return false;
+    std::vector<double> turns;  // exterior turn at each node, counter-clockwise positive
+    for (const auto& [a, b] : next) {
+      const auto it = next.find(b);
+      if (it == next.end()) return false;
+      const Vec2 u = g.nodes[b].p - g.nodes[a].p;
+      const Vec2 v = g.nodes[it->second].p - g.nodes[b].p;
+      turns.push_back(std::atan2(cross(u, v), dot(u, v)));
+    }
+    double total = 0.0;
+    for (double t : turns) total += t;
+    const double sign = total < 0.0 ? -1.0 : 1.0;  // a clockwise loop's interior is on the right
+    for (double t : turns) {
+      const double interior = kPi - sign * t;
+      if (interior < kDiskRoundMin || interior > kDiskRoundMax) return false;
+    }
+    return true;
   }
 
   void add_boundary_edge(PatchGraph& g, std::uint32_t a, std::uint32_t b, std::uint32_t e,

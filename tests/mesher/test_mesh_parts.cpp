@@ -747,6 +747,27 @@ TEST_CASE("a disk is one face: an O-grid, not wedges with slivers at the centre"
   }
 }
 
+TEST_CASE("a nearly round outline is a disk too: one O-grid face", "[mesh][disk]") {
+  // A 48-gon of radius 60 whose coordinates are rounded to 0.1 (as CGAL's inputcircle is
+  // given): its axis is not one point but a small tree, 2.3 wide, and the rails ended at
+  // several of its nodes: a pole of quads at the centre, worst corner 0.183. Rails whose ends
+  // lie within a tenth of the shortest rail of their centroid, round a round loop, go as a
+  // disk's do (drop_disk_rails).
+  const RawPart raw = read_brep_json(test_data_dir() + "/parts/rounded_coords_disk.json");
+  std::optional<std::size_t> quads;
+  for (const Transform& t :
+       {Transform{}, compose(rotation({0.3, -1.0, 2.0}, 1.1), scaling(1e-3)), mirror_x()}) {
+    const Part part = build_part(transformed(raw, t));
+    const MeshPartResult r = mesh_part(part);
+    CHECK(r.check.valid());
+    CHECK(r.stats.disk_patches == 1);
+    CHECK(r.stats.by_template[9] == 1);  // kTemplateNames[9]: "ogrid"
+    CHECK(r.quality.measures[6].worst > 0.8);
+    if (!quads) quads = r.mesh.elements.size();
+    CHECK(r.mesh.elements.size() == *quads);
+  }
+}
+
 TEST_CASE("a rail that spirals round drafted walls ends instead of running for ever", "[mesh][spiral]") {
   // Found by the stress generator: a tray whose walls lean out by a draft angle, ribs close to
   // them; a rail round the walls never landed on its start and the rails stage ran for more
