@@ -1717,7 +1717,7 @@ double quantised(double jacobian) {
 /// start at each of a few nodes; the best by worst corner wins (the first on ties).
 constexpr double kRoundMin = 120.0 * kPi / 180.0;
 constexpr double kRoundMax = 200.0 * kPi / 180.0;
-constexpr double kOgridInner = 0.6;
+constexpr double kOgridInner = 0.85;
 constexpr std::uint32_t kOgridStarts = 4;
 
 /// Arms: a face whose sides alternate boundary, rail, boundary, rail... with three or more of
