@@ -25,6 +25,26 @@ for k in ("medial", "rails", "quads", "smooth", "check", "total", "cpu"):
     assert rows[0]["seconds"][k] >= 0.0
 EOF
 
+# poly_to_json.py: a CGAL .poly (CRLF ends, a hole) becomes a part laytracks meshes; a file
+# whose counts do not add up is refused with where, and nothing is written.
+printf '2\r\n4\r\n0 0\r\n4 0\r\n4 3\r\n0 3\r\n4 1 1 2 1 2 2 1 2\r\n' > "$TMP/sq.poly"
+python3 "$HERE/poly_to_json.py" "$TMP/sq.poly" "$TMP/sq.json"
+python3 - "$TMP/sq.json" << 'EOF'
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["patches"] == [{"name": "sq", "loops": [[0, 1, 2, 3], [4, 5, 6, 7]]}], d["patches"]
+assert d["vertices"][5] == [2.0, 1.0, 0.0], d["vertices"]
+assert d["mesh"] == {"size": 0.0833333}, d["mesh"]
+EOF
+"$LAYTRACKS" mesh "$TMP/sq.json" -o "$TMP/sq.msh" --quiet
+printf '1\n5\n0 0\n1 0\n1 1\n0 1\n' > "$TMP/short.poly"
+if python3 "$HERE/poly_to_json.py" "$TMP/short.poly" "$TMP/short.json" 2> "$TMP/short.err"; then
+  echo "poly_to_json accepted a loop of 5 vertices given 4" >&2
+  exit 1
+fi
+grep -q "the file ends where x of vertex 4 of loop 0 was expected" "$TMP/short.err"
+test ! -e "$TMP/short.json"
+
 if ! command -v gmsh > /dev/null; then
   echo "gmsh is missing: the Gmsh half of the test is skipped"
   exit 0
