@@ -31,25 +31,21 @@ def read_poly(text):
         pos += 1
         return tok
 
-    def count(what):
+    def parse(what, convert, ok, problem):
         tok = take(what)
         try:
-            n = int(tok)
+            x = convert(tok)
         except ValueError:
             raise ValueError("token %d: expected %s, got %r" % (pos, what, tok)) from None
-        if n < 0:
-            raise ValueError("token %d: %s is negative" % (pos, what))
-        return n
+        if not ok(x):
+            raise ValueError("token %d: %s is %s" % (pos, what, problem))
+        return x
+
+    def count(what):
+        return parse(what, int, lambda n: n >= 0, "negative")
 
     def number(what):
-        tok = take(what)
-        try:
-            x = float(tok)
-        except ValueError:
-            raise ValueError("token %d: expected %s, got %r" % (pos, what, tok)) from None
-        if not math.isfinite(x):
-            raise ValueError("token %d: %s is not finite" % (pos, what))
-        return x
+        return parse(what, float, math.isfinite, "not finite")
 
     loops = []
     for l in range(count("the number of loops")):

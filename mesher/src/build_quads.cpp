@@ -22,14 +22,15 @@
 #include <limits>
 #include <map>
 #include <set>
-#include <tuple>
 #include <sstream>
+#include <tuple>
 
 #include "fill.hpp"
-#include "patch_quads.hpp"
 #include "laytracks/brep/error.hpp"
+#include "laytracks/brep/polygon.hpp"
 #include "laytracks/brep/union_find.hpp"
 #include "laytracks/cutgraph/adaptive.hpp"
+#include "patch_quads.hpp"
 
 namespace laytracks {
 
@@ -73,11 +74,8 @@ constexpr double kTinyEndPiece = 0.1;
 constexpr std::size_t kDiskRails = 8;
 constexpr double kDiskGap = 60.0 * kPi / 180.0;
 /// drop_disk_rails on a nearly round loop: the rails' MA ends all within this x the shortest
-/// rail of their centroid, and every boundary node's interior angle within
-/// kDiskRoundMin..kDiskRoundMax (fill_ogrid's kRoundMin, kRoundMax).
+/// rail of their centroid, and the loop round (mesher_detail::is_round, the O-grid's test).
 constexpr double kDiskSpread = 0.1;
-constexpr double kDiskRoundMin = 120.0 * kPi / 180.0;
-constexpr double kDiskRoundMax = 200.0 * kPi / 180.0;
 /// drop_sliver_caps: a cap face thinner than this (twice its area over its perimeter squared)
 /// loses its rails. The fuzzed needles that no template filled were at 1.5e-5 to 8.2e-4; at
 /// 1e-2 ten of the 402 set meshes changed (faceted cylinders' thin facets, an arc's base), at
@@ -721,7 +719,7 @@ class QuadBuilder {
   /// point, and its rails end at several MA nodes of that tree: a pole of 16 quads of worst
   /// corner 0.377 at the centre. Rails whose ends all lie within kDiskSpread x the shortest
   /// rail of their centroid are read the same way when the loop is round (every boundary
-  /// node's interior angle within kDiskRoundMin..kDiskRoundMax, the O-grid's own test).
+  /// node's interior angle within kRoundMin..kRoundMax, the O-grid's own test).
   void drop_disk_rails(PatchId pid, PatchGraph& g) {
     if (part_.patches[pid.index()].loops.size() != 1) return;
     std::vector<std::uint32_t> ends;
@@ -759,29 +757,19 @@ class QuadBuilder {
     ++result_.stats.disk_patches;
   }
 
-  /// Whether the patch's one loop, as its boundary nodes, turns by an interior angle within
-  /// kDiskRoundMin..kDiskRoundMax at every node.
+  /// Whether the patch's one loop, as its boundary nodes, is round.
   static bool round_loop(const PatchGraph& g) {
     std::map<std::uint32_t, std::uint32_t> next;
     for (const CEdge& e : g.edges)
       if (!e.rail) next[e.a] = e.b;
-    if (next.size() < 3) return false;
-    std::vector<double> turns;  // exterior turn at each node, counter-clockwise positive
-    for (const auto& [a, b] : next) {
-      const auto it = next.find(b);
+    std::vector<Vec2> cycle;
+    for (auto it = next.begin(); cycle.size() < next.size(); it = next.find(it->second)) {
       if (it == next.end()) return false;
-      const Vec2 u = g.nodes[b].p - g.nodes[a].p;
-      const Vec2 v = g.nodes[it->second].p - g.nodes[b].p;
-      turns.push_back(std::atan2(cross(u, v), dot(u, v)));
+      cycle.push_back(g.nodes[it->first].p);
     }
-    double total = 0.0;
-    for (double t : turns) total += t;
-    const double sign = total < 0.0 ? -1.0 : 1.0;  // a clockwise loop's interior is on the right
-    for (double t : turns) {
-      const double interior = kPi - sign * t;
-      if (interior < kDiskRoundMin || interior > kDiskRoundMax) return false;
-    }
-    return true;
+    if (cycle.size() < 3) return false;
+    if (twice_signed_area(cycle) < 0.0) std::reverse(cycle.begin(), cycle.end());
+    return mesher_detail::is_round(cycle);
   }
 
   void add_boundary_edge(PatchGraph& g, std::uint32_t a, std::uint32_t b, std::uint32_t e,

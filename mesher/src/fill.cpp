@@ -1001,6 +1001,14 @@ double interior_angle(const std::vector<Vec2>& poly, std::size_t i) {
   return a;
 }
 
+bool is_round(const std::vector<Vec2>& poly) {
+  for (std::size_t k = 0; k < poly.size(); ++k) {
+    const double a = interior_angle(poly, k);
+    if (a < kRoundMin || a > kRoundMax) return false;
+  }
+  return true;
+}
+
 double ccw_angle(Vec2 from, Vec2 to) {
   double a = std::atan2(cross(from, to), dot(from, to));
   if (a < 0.0) a += 2.0 * kPi;
@@ -1715,8 +1723,6 @@ double quantised(double jacobian) {
 /// kOgridInner. A disk's rails all meet at its centre; without them (drop_disk_rails) its
 /// one face gets this instead of a fan of wedges with slivers at the centre. The quarters
 /// start at each of a few nodes; the best by worst corner wins (the first on ties).
-constexpr double kRoundMin = 120.0 * kPi / 180.0;
-constexpr double kRoundMax = 200.0 * kPi / 180.0;
 constexpr double kOgridInner = 0.85;
 constexpr std::uint32_t kOgridStarts = 4;
 
@@ -1837,10 +1843,7 @@ std::optional<FaceMesh> fill_ogrid(const FaceInput& face) {
   const auto n = static_cast<std::uint32_t>(face.cycle.size());
   if (n < 12 || n % 2 != 0) return std::nullopt;
   const std::vector<Vec2>& p = face.cycle;
-  for (std::uint32_t k = 0; k < n; ++k) {
-    const double a = interior_angle(p, k);
-    if (a < kRoundMin || a > kRoundMax) return std::nullopt;
-  }
+  if (!is_round(p)) return std::nullopt;
   // The centroid of the polygon's area, and its mean edge.
   double twice = 0.0, s = 0.0;
   Vec2 c{0.0, 0.0};

@@ -270,6 +270,13 @@ double settled(double jacobian);
 /// Interior angle of the counter-clockwise polygon `poly` at node i (radians, in (0, 2 pi)).
 double interior_angle(const std::vector<Vec2>& poly, std::size_t i);
 
+/// A round polygon: every interior angle between kRoundMin and kRoundMax. The O-grid's faces
+/// (fill_ogrid), and the loops whose rails drop_disk_rails drops when they nearly meet.
+constexpr double kRoundMin = 120.0 * kPi / 180.0;
+constexpr double kRoundMax = 200.0 * kPi / 180.0;
+/// Whether the counter-clockwise polygon `poly` is round.
+bool is_round(const std::vector<Vec2>& poly);
+
 /// Counter-clockwise angle from `from` to `to`, in [0, 2 pi).
 double ccw_angle(Vec2 from, Vec2 to);
 
