@@ -947,6 +947,18 @@ std::vector<std::string> MedialAxis::validate() const {
   if (pieces > 1) {
     problems.push_back("the axis is in " + std::to_string(pieces) +
                        " pieces, but the polygon is one region");
+  } else if (!vertices_.empty()) {
+    // As many cycles as holes: the axis is a deformation retract of the region, a loop round
+    // each hole. (Boost's diagram of a grid-cell ring, outline and hole with their collinear
+    // corners exactly opposite across a wall, lost one stretch of the wall's axis: a tree,
+    // connected, every vertex at its radius, and the rails of that wall ran to two points.)
+    const auto cycles =
+        static_cast<long long>(edges_.size()) - static_cast<long long>(vertices_.size()) + 1;
+    const auto holes = static_cast<long long>(polygon_.loops.size()) - 1;
+    if (cycles != holes) {
+      problems.push_back("the axis has " + std::to_string(cycles) + " cycles, but the polygon " +
+                         std::to_string(holes) + " holes");
+    }
   }
   return problems;
 }

@@ -262,3 +262,26 @@ TEST_CASE("an axis in pieces fails the self-check, and the default backend then 
   cgal.backend = VoronoiBackend::Cgal;
   CHECK(structure(ma) == structure(compute_medial_axis(poly, cgal)));
 }
+
+TEST_CASE("an axis without its loop round a hole fails the self-check; CGAL then does it",
+          "[medial][backends]") {
+  // A fuzzed ring of grid cells (fuzz.py seed 36036, rect_025): outline and hole with their
+  // collinear corners exactly opposite across walls one and two cells wide. Boost's diagram
+  // lost a stretch of the wider wall's axis: a tree, connected, every vertex at its radius,
+  // so every other check passed, and the wall's rails ran to two points (334 quads of worst
+  // corner 0.61 as given, 308 of 0.80 turned in 3D). The axis must have as many cycles as the
+  // polygon has holes.
+  const Part part = load_part(test_data_dir() + "/parts/grid_ring_aligned.json");
+  const Polygon2& poly = part.patches[0].polygon;
+  REQUIRE(poly.loops.size() == 2);
+  MedialOptions options;
+  options.chord_tol = part.chord_tol;
+  options.backend = VoronoiBackend::BoostOnly;
+  CHECK_THROWS_WITH(compute_medial_axis(poly, options),
+                    Catch::Matchers::Contains("0 cycles, but the polygon 1 holes"));
+  options.backend = VoronoiBackend::Boost;
+  const MedialAxis ma = compute_medial_axis(poly, options);
+  CHECK(ma.validate().empty());
+  CHECK(ma.edges().size() == ma.vertices().size());  // one cycle
+  CHECK(structure(ma) == structure(axis_with(poly, VoronoiBackend::Cgal, part.chord_tol)));
+}
