@@ -383,9 +383,10 @@ constexpr double kLastResortJacobian = 1e-5;
 /// (a needle's tip), the last resort is kNeedleShare x that sine (fill.cpp,
 /// last_resort_jacobian), but never below kDegenerateJacobian: the frame round trip changes a
 /// corner's sine by some 1e-12 on such parts, so this keeps three orders of margin. The fuzzed
-/// tips' best templates came to 0.0027-0.45 of their sines (1e-2 left a blob of fuzz seed
-/// 34034 refused, its best 8.8e-8 against a tip's 3.3e-5).
-constexpr double kNeedleShare = 1e-3;
+/// tips' best templates came to 7.1e-4-0.45 of their sines (1e-2 left a blob of fuzz seed
+/// 34034 refused, its best 8.8e-8 against a tip's 3.3e-5; 1e-3 one of seed 38038, a pile of
+/// needles folded along one line, its best 2.4e-9 against a tip's 3.4e-6).
+constexpr double kNeedleShare = 1e-4;
 constexpr double kDegenerateJacobian = 1e-9;
 
 }  // namespace laytracks::mesher_detail
