@@ -267,6 +267,12 @@ constexpr double kJacobianGrain = 1e-9;
 /// `jacobian` rounded to kJacobianGrain.
 double settled(double jacobian);
 
+/// The smallest norm() of `vs` (infinity for none), the very value of the min over every
+/// norm() with hypot called only for the vectors whose squared length is within 1e-12 of the
+/// least: one longer than that by its rounded square is longer by hypot too (whose error is
+/// below one ulp, the square's a few). Squares near underflow or overflow take every hypot.
+double shortest_norm(const std::vector<Vec2>& vs);
+
 /// Interior angle of the counter-clockwise polygon `poly` at node i (radians, in (0, 2 pi)).
 double interior_angle(const std::vector<Vec2>& poly, std::size_t i);
 
