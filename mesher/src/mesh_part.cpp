@@ -10,6 +10,7 @@
 
 #include "fill.hpp"
 #include "laytracks/brep/error.hpp"
+#include "laytracks/brep/self_contact.hpp"
 #include "laytracks/cutgraph/adaptive.hpp"
 #include "laytracks/cutgraph/cut_graph.hpp"
 #include "laytracks/medial/part_medial.hpp"
@@ -111,7 +112,11 @@ CutGraphOptions cut_graph_options(const Part& part,
   return cg;
 }
 
-MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const StageFn& on_stage) {
+namespace {
+
+MeshPartResult mesh_part_unchecked_input(const Part& part,
+                                         const MeshPartOptions& options,
+                                         const StageFn& on_stage) {
   auto stage = [&](const char* name) {
     if (on_stage) on_stage(name);
   };
@@ -257,6 +262,25 @@ MeshPartResult mesh_part(const Part& part, const MeshPartOptions& options, const
                            std::move(r.mesh), r.check);
   }
   return r;
+}
+
+}  // namespace
+
+MeshPartResult mesh_part(const Part& part,
+                         const MeshPartOptions& options,
+                         const StageFn& on_stage) {
+  try {
+    return mesh_part_unchecked_input(part, options, on_stage);
+  } catch (const InternalError& e) {
+    // Only on failure: a needle's sides come as close, and such parts mesh.
+    if (const auto c = closest_self_contact(part, kSelfContactRel * part.size)) {
+      throw InputError(describe(part, *c) +
+                       "; an outline folded back that close leaves no room for a valid mesh "
+                       "(the mesher: " +
+                       e.what() + ")");
+    }
+    throw;
+  }
 }
 
 }  // namespace laytracks

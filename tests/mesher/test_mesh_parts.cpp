@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "laytracks/brep/build.hpp"
+#include "laytracks/brep/self_contact.hpp"
 #include "laytracks/io/brep_json.hpp"
 #include "laytracks/mesher/mesh_part.hpp"
 #include "test_support.hpp"
@@ -1131,4 +1132,29 @@ TEST_CASE("a face with a needle's tip keeps a quad as thin as the tip, in every 
                     {"needle_tip_fine.json", 0.0},
                     {"needle_tip_pile.json", 0.0}},
                    [](const MeshPartResult& r) { return r.stats.needle_tip_faces > 0; });
+}
+
+TEST_CASE("an outline folded back within a hair of itself is refused as input, naming the place",
+          "[mesh]") {
+  // fold_blob.json (blob_002 of fuzz seed 38039): vertex 60 of its outline lies 1.5e-6 (6e-9 x
+  // the part's size) from the segment from vertex 57 to 58, on the far side of a needle. The
+  // mesh's nodes there come within rule 5's 1e-9 x the size of an edge in every attempt; the
+  // refusal says where the outline folds, and keeps the mesher's own failure for reference.
+  const Part part = load_part(test_data_dir() + "/parts/fold_blob.json");
+  try {
+    mesh_part(part);
+    FAIL("the part meshed");
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    CHECK_THAT(what, Catch::StartsWith("patch \"p0\" (index 0): its boundary comes within"));
+    CHECK_THAT(what,
+               Catch::Contains("vertex 60 at (4.59655826, 93.5512344, 0) of the outer loop and "
+                               "the segment from vertex 57 to vertex 58 of the outer loop"));
+    CHECK_THAT(what, Catch::Contains("(the mesher: "));
+  }
+  // Only a failure is put down to a fold: needle_tip_bent.json's outline comes as close to
+  // itself (a needle's narrow base), and it meshes ("a face with a needle's tip ...").
+  const Part needle = load_part(test_data_dir() + "/parts/needle_tip_bent.json");
+  CHECK(closest_self_contact(needle, kSelfContactRel * needle.size));
+  CHECK(mesh_part(needle).check.valid());
 }

@@ -121,8 +121,18 @@ CutGraphOptions cut_graph_options(const Part& part,
                                   std::unique_ptr<TrackWidthLaw>& law,
                                   std::optional<double>* size_capped_from = nullptr);
 
+/// When meshing fails and a patch's boundary comes within this x the part's size of itself
+/// away from its corners (closest_self_contact), the part is refused for that (InputError,
+/// naming the place) rather than reported as the mesher's failure. Outlines folded back that
+/// close (fuzzed noisy outlines: 2.3e-9 to 2.5e-8 x the size) leave slivers with no room for
+/// nodes 1e-9 x the size apart (quality.md, rule 5); parts that mesh are never refused for it
+/// (needles whose sides come within 2e-8 x the size mesh, docs/mesher.md "Needle tips").
+constexpr double kSelfContactRel = 1e-7;
+
 /// Meshes the part and checks the result by quality.md. Throws InvalidMeshError (the failed
-/// rules, with places) when the mesh is not valid, and InternalError when a stage fails.
+/// rules, with places) when the mesh is not valid, and InternalError when a stage fails;
+/// InputError instead of either when the part's boundary comes within kSelfContactRel x its
+/// size of itself.
 MeshPartResult mesh_part(const Part& part,
                          const MeshPartOptions& options = {},
                          const StageFn& on_stage = {});
