@@ -162,19 +162,35 @@ void remove_narrow_corridors(const Part& part,
     std::vector<bool> via_branch(g.gverts.size(), false);
     for (const RailSegment& seg : g.segments)
       if (g.macuts[seg.ma.index()].branch) via_branch[g.cuts[seg.cut.index()].g.index()] = true;
-    // The branch point each rail set meets (its first), for rails through branch points.
-    constexpr std::uint32_t kNone = UINT32_MAX;
-    std::vector<std::uint32_t> branch_of(g.gverts.size(), kNone);
-    for (const auto& l : r.links) {
-      if (!(l.to & kMaNodeFlag) || (l.from & kMaNodeFlag)) continue;
-      if (!g.macuts[l.to & ~kMaNodeFlag].branch) continue;
-      std::uint32_t& b = branch_of[uf.find(l.from)];
-      if (b == kNone) b = l.to;
-    }
     // Widths within rounding of each other, or of the threshold, must decide the same in every
-    // pose: compare them on a grid of 1e-9 x the part's size.
+    // pose: compare them on a grid of 1e-9 x the part's size (and so the rails' lengths below).
     const double grain = 1e-9 * part.size;
     const auto quantum = [&](double x) { return std::llround(x / grain); };
+    // The branch point each rail set meets, for rails through branch points. A set that meets
+    // several takes the one its links reach from the G-CUT-VERT first along the boundary
+    // (place), then by the shorter rail: keys of the part's own geometry, the same in every
+    // pose. The first link laid followed the axis's numbering, which differs between poses
+    // (fuzz seed 38038's bent_027, a grid outline bent in two: a concave corner's rail met two
+    // branch points, and which one it took decided whether its last ray was in a unit; 383
+    // quads as given, 404 scaled by 1e3).
+    constexpr std::uint32_t kNone = UINT32_MAX;
+    std::vector<std::uint32_t> branch_of(g.gverts.size(), kNone);
+    {
+      using BranchKey = std::tuple<LoopKey, long long>;
+      std::vector<BranchKey> branch_key(g.gverts.size());
+      for (const auto& l : r.links) {
+        if (!(l.to & kMaNodeFlag) || (l.from & kMaNodeFlag)) continue;
+        const MaCutVert& mc = g.macuts[l.to & ~kMaNodeFlag];
+        if (!mc.branch) continue;
+        const Vec3 at = part.patches[mc.patch.index()].frame.to_3d(mc.point.position);
+        const BranchKey k{place[l.from], quantum(distance(at, g.gverts[l.from].position))};
+        const std::size_t set = uf.find(l.from);
+        if (branch_of[set] == kNone || k < branch_key[set]) {
+          branch_of[set] = l.to;
+          branch_key[set] = k;
+        }
+      }
+    }
     std::vector<std::pair<long long, std::size_t>> order;
     for (std::size_t corridor = 0; corridor < corridors; ++corridor) {
       const double w = width[corridor];

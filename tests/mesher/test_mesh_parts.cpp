@@ -1158,3 +1158,12 @@ TEST_CASE("an outline folded back within a hair of itself is refused as input, n
   CHECK(closest_self_contact(needle, kSelfContactRel * needle.size));
   CHECK(mesh_part(needle).check.valid());
 }
+
+TEST_CASE("a rail set that meets two branch points takes the same one in every pose",
+          "[mesh][poses]") {
+  // grid_bent_branches.json (bent_027 of fuzz seed 38038): a grid-cell outline bent in two. A
+  // concave corner's rail set meets two branch points; the narrow corridors' units took the
+  // first that the links reached, in the axis's numbering, which differs by pose: 383 quads as
+  // given, 404 turned and scaled. Now the one reached first along the boundary.
+  check_three_poses(read_brep_json(test_data_dir() + "/parts/grid_bent_branches.json"), 0.15);
+}
