@@ -25,10 +25,12 @@ const char* const kHelp =
     "  help [COMMAND]         this text, or a command's own\n"
     "\n"
 
-    "exit status: 0 done; 1 the part was refused or could not be read (the message says what\n"
-    "and where); 2 wrong command line; 3 internal error (a stage failed its own check: please\n"
-    "report it with the part); 4 an output file could not be written; 5 (quality) the mesh is\n"
-    "not valid. On any error nothing is written, and an existing output file is left as it was.\n"
+    "exit status: 0 done; 1 the part was refused (it breaks the format's rules, or an outline\n"
+    "folds back within 1e-7 x its size of itself and cannot be meshed) or could not be read\n"
+    "(the message says what and where); 2 wrong command line; 3 internal error (a stage failed\n"
+    "its own check: please report it with the part); 4 an output file could not be written;\n"
+    "5 (quality) the mesh is not valid. On any error nothing is written, and an existing output\n"
+    "file is left as it was.\n"
     "batch meshes every part it can; its status says what became of the others (laytracks help\n"
     "batch).\n";
 

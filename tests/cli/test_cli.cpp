@@ -366,6 +366,15 @@ TEST_CASE("mesh refuses what it cannot mesh, writes nothing, and says where", "[
     CHECK_THAT(tiny.err, Catch::Contains("choose a larger size"));
     CHECK(slurp(d / "old.msh") == "previous content");
   }
+  // An outline folded back within a hair of itself that no attempt meshes: status 1, the
+  // place named, the old file kept.
+  const Run fold = run("mesh " + q(test_data_dir() + "/parts/fold_blob.json") + " -o " +
+                       q(d / "old.msh") + " --quiet");
+  CHECK(fold.status == 1);
+  CHECK_THAT(fold.err, Catch::Contains("laytracks: error: patch \"p0\" (index 0): its boundary "
+                                       "comes within"));
+  CHECK_THAT(fold.err, Catch::Contains("vertex 60"));
+  CHECK(slurp(d / "old.msh") == "previous content");
   CHECK(std::distance(fs::directory_iterator(d), fs::directory_iterator()) == 1);
 }
 
