@@ -24,8 +24,7 @@ Where locate(const Polygon2& poly, Vec2 x, double tol) {
     for (std::size_t i = 0, j = loop.size() - 1; i < loop.size(); j = i++) {
       const Vec2 p = loop[j], q = loop[i];
       const Vec2 d = q - p;
-      const double t = std::clamp(dot(x - p, d) / dot(d, d), 0.0, 1.0);
-      nearest = std::min(nearest, distance(x, p + t * d));
+      nearest = std::min(nearest, segment_distance(x, p, q));
       if ((p.y > x.y) != (q.y > x.y) && x.x < p.x + (x.y - p.y) * d.x / d.y) inside = !inside;
     }
   }

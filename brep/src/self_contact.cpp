@@ -12,14 +12,6 @@
 namespace laytracks {
 namespace {
 
-/// The distance from x to the segment ab.
-double segment_distance(Vec2 x, Vec2 a, Vec2 b) {
-  const Vec2 d = b - a;
-  const double dd = dot(d, d);
-  const double t = dd > 0.0 ? std::clamp(dot(x - a, d) / dd, 0.0, 1.0) : 0.0;
-  return distance(x, a + t * d);
-}
-
 /// `vertex 12`, or `an arc point` for a point made by discretising an arc.
 std::string vertex_label(const Part& part, VertexId v) {
   const std::int64_t source = part.vertices[v.index()].source_index;

@@ -74,8 +74,7 @@ class Extractor {
       const std::size_t n = loop.size();
       smooth_[l].resize(n, false);
       for (std::size_t i = 0; i < n && options_.flat_turn > 0.0; ++i) {
-        const Vec2 in = loop[i] - loop[(i + n - 1) % n], out = loop[(i + 1) % n] - loop[i];
-        const double turn = std::atan2(cross(in, out), dot(in, out));  // > 0: convex
+        const double turn = corner_turn(l, i);
         if (turn > 0.0 && turn < options_.flat_turn) smooth_[l][i] = true;
       }
     }
@@ -98,17 +97,21 @@ class Extractor {
         reached[v.corner->loop][v.corner->index] = true;
     std::vector<std::string> problems;
     for (std::size_t l = 0; l < poly_.loops.size(); ++l) {
-      const auto& loop = poly_.loops[l];
-      const std::size_t n = loop.size();
-      for (std::size_t i = 0; i < n; ++i) {
-        if (reached[l][i] || smooth_[l][i]) continue;
-        const Vec2 in = loop[i] - loop[(i + n - 1) % n], out = loop[(i + 1) % n] - loop[i];
-        if (!(std::atan2(cross(in, out), dot(in, out)) > kCheckedTurn)) continue;
+      for (std::size_t i = 0; i < poly_.loops[l].size(); ++i) {
+        if (reached[l][i] || smooth_[l][i] || !(corner_turn(l, i) > kCheckedTurn)) continue;
         problems.push_back("convex corner " + std::to_string(i) + " of loop " + std::to_string(l) +
                            " ends no branch of the axis");
       }
     }
     return problems;
+  }
+
+  /// The angle the boundary turns by at corner i of loop l (radians, > 0 at a convex corner).
+  double corner_turn(std::size_t l, std::size_t i) const {
+    const auto& loop = poly_.loops[l];
+    const std::size_t n = loop.size();
+    const Vec2 in = loop[i] - loop[(i + n - 1) % n], out = loop[(i + 1) % n] - loop[i];
+    return std::atan2(cross(in, out), dot(in, out));
   }
 
   MedialAxis run() {

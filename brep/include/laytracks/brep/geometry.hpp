@@ -31,6 +31,13 @@ inline Vec2 perp(Vec2 a) { return {-a.y, a.x}; }
 inline Vec2 lerp(Vec2 a, Vec2 b, double t) {
   return {a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)};
 }
+/// The distance from x to the closed segment ab (to a when a == b).
+inline double segment_distance(Vec2 x, Vec2 a, Vec2 b) {
+  const Vec2 d = b - a;
+  const double dd = dot(d, d);
+  const double t = dd > 0.0 ? std::fmin(std::fmax(dot(x - a, d) / dd, 0.0), 1.0) : 0.0;
+  return distance(x, a + t * d);
+}
 
 struct Vec3 {
   double x = 0.0;
