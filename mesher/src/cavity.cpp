@@ -9,12 +9,16 @@
 // old quads relaxed the same way. A last pass takes the stars of poles (interior nodes of many
 // quads, where a quad's worst corner is) as cavities.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <unordered_map>
 
 #include "fill.hpp"
 #include "laytracks/mesher/build_quads.hpp"
@@ -97,11 +101,59 @@ class Marks {
   std::uint32_t stamp_ = 0;
 };
 
+/// What plan_cavity decided for a cavity, by the bytes of its problem in the cavity's frame
+/// (the cycle, inner and ring nodes' positions there, which are free, and the quads over local
+/// ids): the fill and the two relaxations read nothing else, so the same problem gets the same
+/// answer, to the bit, wherever it comes from (docs/mesher.md, "Cavity re-fill"). The facets
+/// of a faceted shell are often the same triangle turned (a cylinder's sides, a torus's), and
+/// a pass retries cavities that nothing has changed since. Shared by the patches' re-fills,
+/// which run in parallel: an answer computed twice at once is the same answer.
+std::atomic<bool> g_memo_on{true};
+std::atomic<std::size_t> g_memo_hits{0};
+
+class CavityMemo {
+ public:
+  struct Answer {
+    bool keep = false;
+    std::size_t interior = 0, fresh = 0;
+    std::vector<Vec2> pos;    ///< the cycle's and the new inner nodes' positions, relaxed
+    std::vector<Quad> quads;  ///< the new quads (over cycle ids 0..n-1, inner ids n..)
+    double worst = 0.0;
+    std::string log;  ///< the LAYTRACKS_DEBUG_CAVITY line
+  };
+  std::shared_ptr<const Answer> find(const std::string& key) const {
+    if (!g_memo_on) return nullptr;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = answers_.find(key);
+    if (it == answers_.end()) return nullptr;
+    ++g_memo_hits;
+    return it->second;
+  }
+  void insert(std::string key, std::shared_ptr<const Answer> answer) {
+    if (!g_memo_on) return;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (bytes_ > kMemoBytes) return;  // full: the answers are only computed again
+    bytes_ += key.size() + answer->pos.size() * sizeof(Vec2) + answer->quads.size() * sizeof(Quad);
+    answers_.emplace(std::move(key), std::move(answer));
+  }
+
+ private:
+  /// The memo's bound (keys and positions): a torus of 1536 facets takes about 40 MB.
+  static constexpr std::size_t kMemoBytes = std::size_t{256} << 20;
+  mutable std::mutex mutex_;
+  std::unordered_map<std::string, std::shared_ptr<const Answer>> answers_;
+  std::size_t bytes_ = 0;
+};
+
 class PatchRefill {
  public:
   /// `parallel`: evaluate attempts on all cores (for a patch whose re-fill runs alone).
-  PatchRefill(PatchQuads& pq, int iterations, double below, bool parallel)
-      : pq_(pq), iterations_(std::min(iterations, kRefillSweeps)), below_(below), parallel_(parallel) {
+  PatchRefill(PatchQuads& pq, int iterations, double below, bool parallel, CavityMemo& memo)
+      : pq_(pq),
+        iterations_(std::min(iterations, kRefillSweeps)),
+        below_(below),
+        parallel_(parallel),
+        memo_(memo) {
     alive_.assign(pq_.quads.size(), true);
     around_.resize(pq_.pos.size());
     changed_.assign(pq_.pos.size(), -1);
@@ -239,19 +291,19 @@ class PatchRefill {
     double worst = 0.0;       ///< after relaxing: the cavity's quads and the ring's that moved
   };
 
-  /// The cavity's quads (over cycle ids 0..n-1 and inner ids n..) with the ring, relaxed as
-  /// the final smoothing relaxes (kRefillSweeps sweeps of each kind).
-  Local relaxed(const std::vector<Vec2>& cycle_pos,
-                const std::vector<std::uint32_t>& cycle,
-                const std::vector<Vec2>& inner_pos,
-                const std::vector<Quad>& cavity_quads,
-                const std::vector<std::uint32_t>& ring,
-                const LocalFrame& cf,
-                int sweeps = -1) const {
+  /// The cavity's quads (over cycle ids 0..n-1 and inner ids n..) with the ring, not yet
+  /// relaxed: the ring's other nodes after the inner ones, held where they are (`fixed`).
+  Local local_problem(const std::vector<Vec2>& cycle_pos,
+                      const std::vector<std::uint32_t>& cycle,
+                      const std::vector<Vec2>& inner_pos,
+                      const std::vector<Quad>& cavity_quads,
+                      const std::vector<std::uint32_t>& ring,
+                      const LocalFrame& cf,
+                      std::vector<bool>& fixed) const {
     Local l;
     l.ids = cycle;
     l.pos = cycle_pos;
-    std::vector<bool> fixed;
+    fixed.clear();
     for (std::uint32_t v : cycle) fixed.push_back(pq_.fixed[v]);
     for (const Vec2& p : inner_pos) {
       l.ids.push_back(kNew);
@@ -282,6 +334,21 @@ class PatchRefill {
       }
       l.quads.push_back(lq);
     }
+    return l;
+  }
+
+  /// The cavity's quads with the ring (local_problem), relaxed as the final smoothing relaxes
+  /// (kRefillSweeps sweeps of each kind): their worst, of the cavity's quads and the ring's
+  /// that moved.
+  Local relaxed(const std::vector<Vec2>& cycle_pos,
+                const std::vector<std::uint32_t>& cycle,
+                const std::vector<Vec2>& inner_pos,
+                const std::vector<Quad>& cavity_quads,
+                const std::vector<std::uint32_t>& ring,
+                const LocalFrame& cf,
+                int sweeps = -1) const {
+    std::vector<bool> fixed;
+    Local l = local_problem(cycle_pos, cycle, inner_pos, cavity_quads, ring, cf, fixed);
     const std::vector<Vec2> start = l.pos;
     final_sweeps(l.pos, fixed, l.quads, sweeps < 0 ? iterations_ : sweeps, kFinalEscapeTarget);
     l.worst = std::numeric_limits<double>::infinity();
@@ -588,15 +655,62 @@ class PatchRefill {
     all.kind = FaceSide::Kind::Boundary;
     all.edges = static_cast<std::uint32_t>(cycle.size());
     face.sides.push_back(all);
+    // What follows reads the problem in the cavity's frame alone (CavityMemo): its key.
+    std::string key = problem_key(face.cycle, cycle, old_inner, old_quads, ring, cf);
+    std::shared_ptr<const CavityMemo::Answer> answer = memo_.find(key);
+    if (!answer) {
+      answer = refill_answer(face, cycle, old_inner, old_quads, ring, cf, bound);
+      memo_.insert(std::move(key), answer);
+    }
+    log += answer->log;
+    if (!answer->keep) return std::nullopt;
+    Local now;
+    now.ids = cycle;
+    now.ids.resize(n + answer->interior, kNew);
+    now.pos = answer->pos;
+    now.quads = answer->quads;
+    now.worst = answer->worst;
+    return Plan{cavity, cycle, face.cycle, cf, answer->interior, answer->fresh, std::move(now)};
+  }
+
+  /// The bytes of a cavity's problem in its frame: the positions of its cycle, inner and
+  /// ring nodes, which are free, and its and the ring's quads over local ids (local_problem).
+  std::string problem_key(const std::vector<Vec2>& cycle_pos,
+                          const std::vector<std::uint32_t>& cycle,
+                          const std::vector<Vec2>& inner_pos,
+                          const std::vector<Quad>& cavity_quads,
+                          const std::vector<std::uint32_t>& ring,
+                          const LocalFrame& cf) const {
+    std::vector<bool> fixed;
+    const Local l = local_problem(cycle_pos, cycle, inner_pos, cavity_quads, ring, cf, fixed);
+    const std::size_t counts[3] = {cycle.size(), inner_pos.size(), cavity_quads.size()};
+    std::string key(reinterpret_cast<const char*>(counts), sizeof counts);
+    key.append(reinterpret_cast<const char*>(l.pos.data()), l.pos.size() * sizeof(Vec2));
+    key.append(reinterpret_cast<const char*>(l.quads.data()), l.quads.size() * sizeof(Quad));
+    for (std::size_t i = 0; i < cycle.size(); ++i) key.push_back(fixed[i] ? '1' : '0');
+    return key;
+  }
+
+  /// The fill of a cavity and its judgement (plan_cavity): the new quads, relaxed with the
+  /// ring, kept when their worst beats the old quads' relaxed alike by kRefillGain.
+  std::shared_ptr<const CavityMemo::Answer> refill_answer(const FaceInput& face,
+                                                          const std::vector<std::uint32_t>& cycle,
+                                                          const std::vector<Vec2>& old_inner,
+                                                          const std::vector<Quad>& old_quads,
+                                                          const std::vector<std::uint32_t>& ring,
+                                                          const LocalFrame& cf,
+                                                          double bound) const {
+    auto answer = std::make_shared<CavityMemo::Answer>();
+    const std::size_t n = cycle.size();
     // The fill first: a third of the cavities get no valid quads from any template, and then
     // the relaxation below is not needed.
     const std::optional<FaceMesh> filled = fill_cavity(face);
-    if (!filled) return std::nullopt;
+    if (!filled) return answer;
     const FaceMesh& fm = *filled;
     // The old quads relaxed with the quads round the cavity: what the smoothing could do
     // without a re-fill. When that is good enough, or as good as the corners allow, no re-fill.
     const Local was = relaxed(face.cycle, cycle, old_inner, old_quads, ring, cf);
-    if (was.worst >= below_ || bound < was.worst + kRefillGain) return std::nullopt;
+    if (was.worst >= below_ || bound < was.worst + kRefillGain) return answer;
 
     // The old quads and the new, each relaxed with the quads round the cavity: the new are kept
     // when their worst (and that of the quads round them that moved) beats the old's by
@@ -604,17 +718,24 @@ class PatchRefill {
     // would have done.
     Local now = relaxed(face.cycle, cycle, fm.interior, fm.quads, ring, cf);
     static const bool debug = std::getenv("LAYTRACKS_DEBUG_CAVITY") != nullptr;
-    const bool keep = settled(now.worst) >= settled(was.worst) + kRefillGain;
+    answer->keep = settled(now.worst) >= settled(was.worst) + kRefillGain;
     if (debug) {
       char line[200];
-      std::snprintf(line, sizeof line,
-                    "cavity: %zu quads, %zu nodes round, %s (%zu quads, %.6f), worst %.3f -> %.3f%s\n",
-                    cavity.size(), n, to_string(fm.kind), fm.quads.size(), fm.min_jacobian,
-                    was.worst, now.worst, keep ? " kept" : "");
-      log += line;
+      std::snprintf(
+          line, sizeof line,
+          "cavity: %zu quads, %zu nodes round, %s (%zu quads, %.6f), worst %.3f -> %.3f%s\n",
+          old_quads.size(), n, to_string(fm.kind), fm.quads.size(), fm.min_jacobian, was.worst,
+          now.worst, answer->keep ? " kept" : "");
+      answer->log = line;
     }
-    if (!keep) return std::nullopt;
-    return Plan{cavity, cycle, face.cycle, cf, fm.interior.size(), fm.quads.size(), std::move(now)};
+    if (!answer->keep) return answer;
+    answer->interior = fm.interior.size();
+    answer->fresh = fm.quads.size();
+    answer->pos.assign(now.pos.begin(),
+                       now.pos.begin() + static_cast<std::ptrdiff_t>(n + answer->interior));
+    answer->quads = fm.quads;
+    answer->worst = now.worst;
+    return answer;
   }
 
   /// Whether regrid_plan could fill the cavity, read from the counts alone (no cycle built):
@@ -687,12 +808,47 @@ class PatchRefill {
         static_cast<double>(fill->quads.size()) / static_cast<double>(cavity.size());
     if (more > kRegridCountRatio || more * kRegridCountRatio < 1.0) return std::nullopt;
     const Posed old = posed(cavity, cycle, inner);
+    const std::vector<std::uint32_t> ring = ring_of(cavity, cycle);
+    // From here on the problem in the cavity's frame alone is read (CavityMemo).
+    std::string key = "regrid" + problem_key(old.cycle, cycle, old.inner, old.quads, ring, old.cf);
+    std::shared_ptr<const CavityMemo::Answer> answer = memo_.find(key);
+    if (!answer) {
+      answer = regrid_answer(std::move(*fill), old, cycle, ring);
+      memo_.insert(std::move(key), answer);
+    }
+    static const bool debug = std::getenv("LAYTRACKS_DEBUG_CAVITY") != nullptr;
+    if (debug && !answer->log.empty()) {  // (none when no quad was tapered)
+      Vec2 mid{0.0, 0.0};
+      for (const Vec2& p : old.cycle) mid = mid + (1.0 / static_cast<double>(n)) * p;
+      mid = old.cf.to_patch(mid);
+      char line[200];
+      std::snprintf(line, sizeof line,
+                    "regrid: near (%g, %g) %zu quads, %zu inner nodes, turning %d", mid.x, mid.y,
+                    cavity.size(), inner.size(), turning);
+      log += line + answer->log;
+    }
+    if (!answer->keep) return std::nullopt;
+    Local now;
+    now.ids = cycle;
+    now.ids.resize(n + answer->interior, kNew);
+    now.pos = answer->pos;
+    now.quads = answer->quads;
+    now.worst = answer->worst;
+    return Plan{cavity, cycle, old.cycle, old.cf, answer->interior, answer->fresh, std::move(now)};
+  }
+
+  /// regrid_plan's fill placed in the cavity and judged against the old quads, both relaxed
+  /// with the ring.
+  std::shared_ptr<const CavityMemo::Answer> regrid_answer(
+      TurnFill fill,
+      const Posed& old,
+      const std::vector<std::uint32_t>& cycle,
+      const std::vector<std::uint32_t>& ring) const {
+    auto answer = std::make_shared<CavityMemo::Answer>();
+    const std::size_t n = cycle.size();
     const LocalFrame& cf = old.cf;
     const std::vector<Vec2>& cyc = old.cycle;
-    const std::vector<Vec2>& old_inner = old.inner;
-    const std::vector<Quad>& old_quads = old.quads;
-    place_harmonic(*fill, cyc, kRegridSweeps);
-    const std::vector<std::uint32_t> ring = ring_of(cavity, cycle);
+    place_harmonic(fill, cyc, kRegridSweeps);
     // Judged after kRefillSweeps sweeps whatever the smoothing asked for, so that the choice,
     // and the element count, do not depend on it; the new quads keep those positions (also
     // with --smooth 0: the harmonic positions alone may fold where the cavity is not convex).
@@ -706,29 +862,29 @@ class PatchRefill {
       }
       return t;
     };
-    const Local was = relaxed(cyc, cycle, old_inner, old_quads, ring, cf, kRefillSweeps);
-    const std::size_t t_was = tapered(was, old_quads.size());
-    if (t_was == 0) return std::nullopt;  // nothing to gain
-    Local now = relaxed(cyc, cycle, fill->interior, fill->quads, ring, cf, kRefillSweeps);
-    const std::size_t t_now = tapered(now, fill->quads.size());
-    const bool keep = t_now < t_was && now.worst > kMinValidJacobian &&
-                      settled(now.worst) >= std::min(settled(was.worst), below_);
+    const Local was = relaxed(cyc, cycle, old.inner, old.quads, ring, cf, kRefillSweeps);
+    const std::size_t t_was = tapered(was, old.quads.size());
+    if (t_was == 0) return answer;  // nothing to gain
+    Local now = relaxed(cyc, cycle, fill.interior, fill.quads, ring, cf, kRefillSweeps);
+    const std::size_t t_now = tapered(now, fill.quads.size());
+    answer->keep = t_now < t_was && now.worst > kMinValidJacobian &&
+                   settled(now.worst) >= std::min(settled(was.worst), below_);
     static const bool debug = std::getenv("LAYTRACKS_DEBUG_CAVITY") != nullptr;
     if (debug) {
       char line[200];
-      Vec2 mid{0.0, 0.0};
-      for (const Vec2& p : cyc) mid = mid + (1.0 / static_cast<double>(n)) * p;
-      mid = cf.to_patch(mid);
-      std::snprintf(line, sizeof line,
-                    "regrid: near (%g, %g) %zu quads, %zu inner nodes, turning %d -> %zu quads, "
-                    "tapered %zu -> %zu, "
-                    "worst %.3f -> %.3f%s\n",
-                    mid.x, mid.y, cavity.size(), inner.size(), turning, fill->quads.size(), t_was,
-                    t_now, was.worst, now.worst, keep ? " kept" : "");
-      log += line;
+      std::snprintf(line, sizeof line, " -> %zu quads, tapered %zu -> %zu, worst %.3f -> %.3f%s\n",
+                    fill.quads.size(), t_was, t_now, was.worst, now.worst,
+                    answer->keep ? " kept" : "");
+      answer->log = line;
     }
-    if (!keep) return std::nullopt;
-    return Plan{cavity, cycle, cyc, cf, fill->interior.size(), fill->quads.size(), std::move(now)};
+    if (!answer->keep) return answer;
+    answer->interior = fill.interior.size();
+    answer->fresh = fill.quads.size();
+    answer->pos.assign(now.pos.begin(),
+                       now.pos.begin() + static_cast<std::ptrdiff_t>(n + answer->interior));
+    answer->quads = fill.quads;
+    answer->worst = now.worst;
+    return answer;
   }
 
  public:
@@ -787,6 +943,7 @@ class PatchRefill {
   int iterations_;
   double below_;  ///< quads worse than this get a re-fill tried
   bool parallel_;
+  CavityMemo& memo_;
   std::vector<bool> alive_;
   std::vector<std::vector<std::uint32_t>> around_;  ///< node -> alive quads at it
   std::vector<int> changed_;  ///< node -> the last pass that moved or made it (-1: none)
@@ -795,6 +952,10 @@ class PatchRefill {
 };
 
 }  // namespace
+
+void set_cavity_memo(bool on) { g_memo_on = on; }
+
+std::size_t cavity_memo_hits() { return g_memo_hits; }
 
 std::size_t refill_cavities(
     const Part& part, QuadMesh& mesh, int iterations, double below, std::size_t* regrids) {
@@ -808,6 +969,7 @@ std::size_t refill_cavities(
     std::size_t kept = 0, regrids = 0;
   };
   std::vector<Result> results(part.patches.size());
+  CavityMemo memo;
   // With one patch to re-fill, its attempts run in parallel instead (a parallel_for within
   // the patches' would run on its caller's thread).
   const std::vector<std::size_t> busy = busy_patches(by_patch);
@@ -817,7 +979,8 @@ std::size_t refill_cavities(
     Result& r = results[p];
     r.pq = patch_quads(part, mesh, p, by_patch[p], pinned);
     if (r.pq.quads.empty()) return;
-    PatchRefill refill(r.pq, iterations, below, inner && r.pq.quads.size() >= kRefillParallelQuads);
+    PatchRefill refill(r.pq, iterations, below, inner && r.pq.quads.size() >= kRefillParallelQuads,
+                       memo);
     int pass = 0;
     for (; pass < kRefillPasses; ++pass) {
       const std::size_t more = refill.run(pass);

@@ -12,6 +12,7 @@
 #include "laytracks/brep/build.hpp"
 #include "laytracks/brep/self_contact.hpp"
 #include "laytracks/io/brep_json.hpp"
+#include "laytracks/mesher/build_quads.hpp"
 #include "laytracks/mesher/mesh_part.hpp"
 #include "test_support.hpp"
 
@@ -894,6 +895,19 @@ TEST_CASE("a shell of irregular triangles joins its facets' near touching points
   }
 }
 
+namespace {
+/// Whether two meshes have the same nodes, to the bit, and the same elements.
+bool same_mesh(const QuadMesh& a, const QuadMesh& b) {
+  bool same = a.nodes.size() == b.nodes.size() && a.elements.size() == b.elements.size();
+  for (std::size_t v = 0; same && v < a.nodes.size(); ++v)
+    same = a.nodes[v].x == b.nodes[v].x && a.nodes[v].y == b.nodes[v].y &&
+           a.nodes[v].z == b.nodes[v].z;
+  for (std::size_t e = 0; same && e < a.elements.size(); ++e)
+    same = a.elements[e].nodes == b.elements[e].nodes && a.elements[e].patch == b.elements[e].patch;
+  return same;
+}
+}  // namespace
+
 TEST_CASE("a shell of many patches is meshed the same on one core and on several",
           "[mesh][determinism]") {
   // The faces of all patches are filled at once on all cores, and the patches re-filled and
@@ -911,15 +925,41 @@ TEST_CASE("a shell of many patches is meshed the same on one core and on several
   REQUIRE(one.check.valid());
   CHECK(one.mesh.nodes.size() == three.mesh.nodes.size());
   CHECK(one.mesh.elements.size() == three.mesh.elements.size());
-  bool same = one.mesh.nodes.size() == three.mesh.nodes.size() &&
-              one.mesh.elements.size() == three.mesh.elements.size();
-  for (std::size_t v = 0; same && v < one.mesh.nodes.size(); ++v)
-    same = one.mesh.nodes[v].x == three.mesh.nodes[v].x &&
-           one.mesh.nodes[v].y == three.mesh.nodes[v].y &&
-           one.mesh.nodes[v].z == three.mesh.nodes[v].z;
-  for (std::size_t e = 0; same && e < one.mesh.elements.size(); ++e)
-    same = one.mesh.elements[e].nodes == three.mesh.elements[e].nodes;
-  CHECK(same);
+  CHECK(same_mesh(one.mesh, three.mesh));
+}
+
+TEST_CASE("the re-fill's memo changes no mesh", "[mesh][refill][determinism]") {
+  // The memo must give what the cavity's fill and relaxations would (its key holds all they
+  // read): the same mesh without it, and on several threads, where the patches share it.
+  // cyl6_tri_fan.json (bench/make_faceted.py, mesh.size 1): a hexagonal cylinder whose sides
+  // are two triangles each and whose caps are fans of six, so the facets come in four shapes
+  // and most cavities of one facet are met again in the others. jico1_jittered.json
+  // (bench/make_icosphere.py, level 1, radii jittered by 15%, mesh.size 3): no two facets
+  // alike, so a key that missed what the answers read would hand a cavity another's quads
+  // (with the ring's positions left out of the key its mesh fails rules 2-6).
+  for (const auto& [name, least_hits] :
+       {std::pair<const char*, std::size_t>{"cyl6_tri_fan.json", 100},
+        {"jico1_jittered.json", 0}}) {
+    INFO(name);
+    const Part part = build_part(read_brep_json(test_data_dir() + "/parts/" + name));
+    set_mesher_threads(1);
+    set_cavity_memo(false);
+    const std::size_t hits_before = cavity_memo_hits();
+    const MeshPartResult off = mesh_part(part);
+    CHECK(cavity_memo_hits() == hits_before);
+    set_cavity_memo(true);
+    const MeshPartResult on = mesh_part(part);
+    CHECK(cavity_memo_hits() - hits_before >= least_hits);
+    set_mesher_threads(3);
+    const MeshPartResult three = mesh_part(part);
+    set_mesher_threads(0);
+    REQUIRE(off.check.valid());
+    CHECK(off.stats.cavity_refills > 50);
+    CHECK(on.stats.cavity_refills == off.stats.cavity_refills);
+    CHECK(on.stats.regrids == off.stats.regrids);
+    CHECK(same_mesh(off.mesh, on.mesh));
+    CHECK(same_mesh(off.mesh, three.mesh));
+  }
 }
 
 TEST_CASE("a round hole's rails spread over it far below the size the part was made for",

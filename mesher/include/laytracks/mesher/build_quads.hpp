@@ -150,6 +150,15 @@ std::size_t refill_cavities(const Part& part,
                             double below = kRefillBelowUniform,
                             std::size_t* regrids = nullptr);
 
+/// refill_cavities answers a cavity whose problem (in the cavity's own frame, to the bit) it
+/// has met before from memory, in every patch of the part (docs/mesher.md, "Cavity re-fill":
+/// the congruent facets of a faceted shell): the same answer it would compute. On unless
+/// turned off here, which the tests do to check that the meshes are the same without it.
+void set_cavity_memo(bool on);
+/// How many cavities the memo has answered so far in this process (on several threads the
+/// count depends on their timing, the meshes do not).
+std::size_t cavity_memo_hits();
+
 /// Smooths the interior nodes of every patch in its frame (docs/mesher.md, "Smoothing"):
 /// `iterations` Laplacian sweeps, as many of angle optimisation, then untangling sweeps over
 /// nodes of quads below 0.6, then strictly below 0.7. Nodes on B-Rep edges and seams never
