@@ -261,8 +261,13 @@ void untangle_nodes(std::vector<Vec2>& pos,
 /// another (a pairs face of a generated part relaxed to a worst corner of 0.154 in one pose and
 /// 0.142 in the other). Far above rounding at any scale, far below any difference the sweeps
 /// care about. A move must still keep a quad that had positive corners positive (`keeps_sign`):
-/// the grain alone would let +4e-10 become -4e-10.
-constexpr double kJacobianGrain = 1e-9;
+/// the grain alone would let +2e-10 become -2e-10. A power of two (2^-32, session 38; it was
+/// 1e-9): the values that come again and again on grid-like outlines, the corners between
+/// small integer vectors, must lie far from the grain's rounding boundaries, and 1/sqrt(5) (a
+/// grid edge against a 2:1 diagonal) lay 4.2e-14 from one of 1e-9's: the re-fill's candidates
+/// changed order between poses (fuzz seed 42042's rect_024: 454 quads, 449 turned). On 2^-32
+/// none of the corners between integer vectors up to 5 long lies within 1e-12 of a boundary.
+constexpr double kJacobianGrain = 1.0 / 4294967296.0;
 
 /// `jacobian` rounded to kJacobianGrain.
 double settled(double jacobian);

@@ -1216,3 +1216,18 @@ TEST_CASE("a staircase whose step corner Boost's axis missed meshes alike in eve
   // corner that is not smooth to end a branch, and CGAL does such a polygon.
   check_three_poses(read_brep_json(test_data_dir() + "/parts/staircase_steps.json"), 0.5);
 }
+
+TEST_CASE("quads whose worst corners are 1/sqrt(5) are re-filled in the same order in every pose",
+          "[mesh][poses][refill]") {
+  // grid_sqrt5_ties.json (rect_024 of fuzz seed 42042, turned in 3D as the fuzz run turned it):
+  // a grid-cell outline with a hole, whose
+  // quads have many corners between a grid edge and a 2:1 diagonal, of scaled Jacobian
+  // 1/sqrt(5) = 0.44721359549995794. Rounded to kJacobianGrain = 1e-9 that value lay 4.2e-14
+  // from a rounding boundary, and the re-fill's candidates sorted by it changed order between
+  // poses (449 quads here, 454 in the two other poses). On the grain of 2^-32 no scaled Jacobian of
+  // a corner between integer vectors up to 5 long lies within 1e-12 of a boundary (test_fill:
+  // "settled values of grid corners ...").
+  const std::vector<MeshPartResult> rs =
+      check_three_poses(read_brep_json(test_data_dir() + "/parts/grid_sqrt5_ties.json"), 0.3);
+  CHECK(rs.front().stats.cavity_refills > 0);
+}
