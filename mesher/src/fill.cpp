@@ -20,7 +20,7 @@
 
 namespace laytracks::mesher_detail {
 
-static_assert(static_cast<std::size_t>(FillKind::Sided) + 1 == kTemplateNames.size(),
+static_assert(static_cast<std::size_t>(FillKind::Kites) + 1 == kTemplateNames.size(),
               "a name for every face template");
 
 const char* to_string(FillKind kind) { return kTemplateNames[static_cast<std::size_t>(kind)]; }
@@ -1089,7 +1089,7 @@ double quad_angle_score(const std::vector<Vec2>& q) {
 /// corner, so the quad has no flat corner. Score: the smallest angle it makes at its ends
 /// (capped at 90 degrees), or of a quad it cuts off (asin of its scaled Jacobian); lowered by
 /// 30 per unit of |ln(spacing / h)| and when it passes closer than 0.6 spacing to another node.
-std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) {
+std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep, bool kites) {
   const auto n = static_cast<std::uint32_t>(poly.size());
   double h = 0.0;
   for (std::uint32_t k = 0; k < n; ++k) h += distance(poly[k], poly[(k + 1) % n]);
@@ -1129,7 +1129,10 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
       for (std::int64_t count = std::max<std::int64_t>(0, ideal - 1); count <= ideal + 1; ++count) {
         const auto in = static_cast<std::uint32_t>(count);
         if ((gap + in + 1) % 2 != 0) continue;
-        if (gap + 1 + in >= n || n - gap + 1 + in >= n) continue;
+        const bool kite = in == 1 && (gap == 2 || n - gap == 2);
+        // A kite leaves a polygon of as many nodes (one node traded for a new one): only when
+        // `kites` (the needle-tip attempt's last resort), bounded by cut_down's budget.
+        if ((gap + 1 + in >= n || n - gap + 1 + in >= n) && !(kites && kite)) continue;
         const double spacing = len / static_cast<double>(in + 1);
         const double penalty = 30.0 * std::abs(std::log(spacing / h));
         if (settled(cap - penalty) <= bar()) continue;
@@ -1137,7 +1140,6 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep) 
         const auto inner_node = [&](std::uint32_t k) {
           return lerp(poly[i], poly[j], static_cast<double>(k) / (in + 1));
         };
-        const bool kite = in == 1 && (gap == 2 || n - gap == 2);
         Vec2 kite_node{};
         if (kite) {  // push the node away from the corner it cuts off
           const Vec2 corner = poly[gap == 2 ? (i + 1) % n : (j + 1) % n];
@@ -1214,7 +1216,8 @@ constexpr std::size_t kCutChoices = 4;
 /// cgal_wiggly_03_cgal), and best_chords reads nothing but the positions.
 using ChordCache = std::unordered_map<std::string, std::vector<Chord>>;
 
-bool cut_down(Builder& m, const std::vector<std::uint32_t>& ids, int& budget, ChordCache& cache) {
+bool cut_down(
+    Builder& m, const std::vector<std::uint32_t>& ids, int& budget, ChordCache& cache, bool kites) {
   const auto n = static_cast<std::uint32_t>(ids.size());
   if (n == 4) {
     m.quad(ids[0], ids[1], ids[2], ids[3]);
@@ -1234,7 +1237,7 @@ bool cut_down(Builder& m, const std::vector<std::uint32_t>& ids, int& budget, Ch
   std::string key(reinterpret_cast<const char*>(poly.data()), poly.size() * sizeof(Vec2));
   auto found = cache.find(key);
   if (found == cache.end())
-    found = cache.emplace(std::move(key), best_chords(poly, kCutChoices)).first;
+    found = cache.emplace(std::move(key), best_chords(poly, kCutChoices, kites)).first;
   // A reference to the element stays valid while the recursion below adds others.
   const std::vector<Chord>& chords = found->second;
   for (const Chord& c : chords) {
@@ -1248,7 +1251,7 @@ bool cut_down(Builder& m, const std::vector<std::uint32_t>& ids, int& budget, Ch
     for (std::uint32_t k = c.j; k != c.i; k = (k + 1) % n) b.push_back(ids[k]);
     b.push_back(ids[c.i]);
     b.insert(b.end(), chord.begin(), chord.end());
-    if (cut_down(m, a, budget, cache) && cut_down(m, b, budget, cache)) return true;
+    if (cut_down(m, a, budget, cache, kites) && cut_down(m, b, budget, cache, kites)) return true;
     m.out.interior.resize(interior);
     m.out.quads.resize(quads);
     if (budget < 0) return false;
@@ -1434,15 +1437,19 @@ constexpr std::size_t kMaxCutNodes = 96;
 
 /// Cut: recursive decomposition by chords (best_chord) down to quads, then the interior nodes
 /// relaxed. The template of last resort: it needs nothing of the face but a simple polygon.
-std::optional<FaceMesh> fill_cut(const FaceInput& face) {
+/// With `kites` (FillKind::Kites, fill_face's very last resort in the needle-tip attempt) a
+/// chord may also cut one corner off as a quad through one new node, leaving a polygon of as
+/// many nodes: a needle whose one side is one edge and whose other side has nodes in a line
+/// (flat corners) has no quads on its own nodes, nor pieces smaller than itself.
+std::optional<FaceMesh> fill_cut(const FaceInput& face, bool kites = false) {
   const auto n = static_cast<std::uint32_t>(face.cycle.size());
   if (n < 6 || n % 2 != 0 || n > kMaxCutNodes) return std::nullopt;
-  Builder m(face, FillKind::Cut);
+  Builder m(face, kites ? FillKind::Kites : FillKind::Cut);
   std::vector<std::uint32_t> ids(n);
   for (std::uint32_t k = 0; k < n; ++k) ids[k] = k;
   int budget = 4 * static_cast<int>(n);
   ChordCache cache;
-  if (!cut_down(m, ids, budget, cache)) return std::nullopt;
+  if (!cut_down(m, ids, budget, cache, kites)) return std::nullopt;
   FaceMesh r = m.finish();
   relax(r, face, 30);
   return r;
@@ -2379,9 +2386,16 @@ FaceMesh fill_face(const FaceInput& face, const std::string& where, bool needle_
     outline(d, " ");
     std::fprintf(stderr, "%s\n", d.str().c_str());
   }
-  if (best &&
-      best->min_jacobian > (needle_tips ? last_resort_jacobian(face.cycle) : kLastResortJacobian))
-    return *best;
+  const double bar = needle_tips ? last_resort_jacobian(face.cycle) : kLastResortJacobian;
+  if (best && best->min_jacobian > bar) return *best;
+  // The needle-tip attempt's very last resort: cut, with kites (fill_cut). Only where every
+  // template failed in the last attempt, so no part that meshed without it changes.
+  if (needle_tips) {
+    std::optional<FaceMesh> kites = fill_cut(face, true);
+    if (debug && kites)
+      std::fprintf(stderr, "face: %s kites %g\n", where.c_str(), kites->min_jacobian);
+    if (kites && kites->min_jacobian > bar) return *kites;
+  }
   std::ostringstream s;
   s << "mesher: no template gives valid quads in " << where << " (" << n
     << " boundary nodes, " << face.sides.size() << " sides";

@@ -53,6 +53,7 @@ enum class FillKind : std::uint8_t {
   Lattice,  ///< split with inner coarse nodes on a square lattice: quads of the face's edge size
   Match,    ///< a graded triangulation inside, its triangles paired into quads
   Sided,    ///< three or five corners: as many grids round one inner node
+  Kites,    ///< the needle-tip attempt's last resort: cut, and corners cut off as kites
 };
 const char* to_string(FillKind kind);
 

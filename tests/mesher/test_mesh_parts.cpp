@@ -1247,3 +1247,19 @@ TEST_CASE("quads whose worst corners are 1/sqrt(5) are re-filled in the same ord
       check_three_poses(read_brep_json(test_data_dir() + "/parts/grid_sqrt5_ties.json"), 0.3);
   CHECK(rs.front().stats.cavity_refills > 0);
 }
+
+TEST_CASE("a needle that no template fills is cut with kites in the last attempt, in every pose",
+          "[mesh][poses][face]") {
+  // needle_kites.json (blob_055 of fuzz seed 40053, found by a helper session): a face of 10
+  // nodes whose outline has a needle, one edge on one side and nodes in a line (flat corners)
+  // on the other. No template gives valid quads on its nodes, and cut's pieces must be smaller
+  // than the face; it was refused in every pose ("no template gives valid quads", best corner
+  // -3.5e-15). In the needle-tip attempt, cut may now also cut a corner off as a kite through
+  // one new node (FillKind::Kites): 3,941 quads in every pose, one face by kites.
+  const auto kites = static_cast<std::size_t>(
+      std::find(kTemplateNames.begin(), kTemplateNames.end(), std::string("kites")) -
+      kTemplateNames.begin());
+  REQUIRE(kites < kTemplateNames.size());
+  check_test_parts({{"needle_kites.json", 0.0}},
+                   [&](const MeshPartResult& r) { return r.stats.by_template[kites] > 0; });
+}

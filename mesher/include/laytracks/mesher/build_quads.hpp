@@ -35,9 +35,9 @@ constexpr double kRefillBelowUniform = 0.7;
 constexpr double kRefillBelowAdaptive = 0.5;
 
 /// Names of the face templates, in mesher_detail::FillKind order (docs/mesher.md).
-constexpr std::array<const char*, 17> kTemplateNames = {
+constexpr std::array<const char*, 18> kTemplateNames = {
     "grid",  "diamond", "quad",  "ring",   "split", "rows",    "cut",   "pairs", "strip",
-    "ogrid", "arms",    "taper", "reflex", "three", "lattice", "match", "sided"};
+    "ogrid", "arms",    "taper", "reflex", "three", "lattice", "match", "sided", "kites"};
 
 /// What the quad stage did, for reports and tests.
 struct QuadStats {
