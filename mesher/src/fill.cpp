@@ -1144,6 +1144,13 @@ std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep, 
         if (kite) {  // push the node away from the corner it cuts off
           const Vec2 corner = poly[gap == 2 ? (i + 1) % n : (j + 1) % n];
           kite_node = inner_node(1) + 0.5 * (inner_node(1) - corner);
+          // The kites' last resort: in a needle far thinner than the chord is long, half the
+          // way out leaves the polygon; the first of smaller pushes that stays inside.
+          if (kites)
+            for (const double push : {0.5, 0.2, 0.05, 0.01}) {
+              kite_node = inner_node(1) + push * (inner_node(1) - corner);
+              if (inside_polygon(kite_node, poly)) break;
+            }
         }
         const Vec2 first = kite ? kite_node : in ? inner_node(1) : poly[j];
         const Vec2 last = kite ? kite_node : in ? inner_node(in) : poly[i];
