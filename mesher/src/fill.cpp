@@ -1084,9 +1084,10 @@ double quad_angle_score(const std::vector<Vec2>& q) {
 /// score -inf when none fits. Rules (docs/mesher.md, "Cut"): a chord joins two nodes that are
 /// not neighbours, inside the polygon; it gets the inner nodes that make both halves' node
 /// counts even and smaller than the polygon's, spaced as close to `h` (the polygon's mean edge)
-/// as parity allows. Its nodes lie on the straight segment, except a chord with one inner node
-/// that cuts one corner off as a quad: that node is pushed off the segment, away from the
-/// corner, so the quad has no flat corner. Score: the smallest angle it makes at its ends
+/// as parity allows. Its nodes lie on the straight segment. With `kites` (fill_cut), also a
+/// chord with one inner node that cuts one corner off as a quad (its other half as large as
+/// the polygon): that node is pushed off the segment, away from the corner, so the quad has no
+/// flat corner. Score: the smallest angle it makes at its ends
 /// (capped at 90 degrees), or of a quad it cuts off (asin of its scaled Jacobian); lowered by
 /// 30 per unit of |ln(spacing / h)| and when it passes closer than 0.6 spacing to another node.
 std::vector<Chord> best_chords(const std::vector<Vec2>& poly, std::size_t keep, bool kites) {
