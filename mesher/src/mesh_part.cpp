@@ -272,6 +272,24 @@ MeshPartResult mesh_part(const Part& part,
   try {
     return mesh_part_unchecked_input(part, options, on_stage);
   } catch (const InternalError& e) {
+    // A uniform size capped at kMaxSizeFraction x the part's extent asks for the coarsest mesh
+    // there is; where that fails (a stadium whose faces at that size are bays round a slot's
+    // round end: fuzz seed 44044's extreme_094), the sizes kCappedRetry x the cap are tried in
+    // turn, the same in every pose. The size asked for stays in size_capped_from.
+    std::optional<double> asked;
+    const double cap = uniform_element_size(part, options, &asked);
+    if (asked && !options.adaptive.value_or(part.mesh.mode == MeshMode::Adaptive)) {
+      for (const double share : kCappedRetry) {
+        MeshPartOptions smaller = options;
+        smaller.size = share * cap;
+        try {
+          MeshPartResult r = mesh_part_unchecked_input(part, smaller, on_stage);
+          r.size_capped_from = asked;
+          return r;
+        } catch (const InternalError&) {
+        }
+      }
+    }
     // Only on failure: a needle's sides come as close, and such parts mesh.
     if (const auto c = closest_self_contact(part, kSelfContactRel * part.size)) {
       throw InputError(describe(part, *c) +

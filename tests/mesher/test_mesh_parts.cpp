@@ -1266,3 +1266,21 @@ TEST_CASE("a needle that no template fills is cut with kites in the last attempt
   check_test_parts({{"needle_kites.json", 0.0}, {"needle_kites_thin.json", 0.0}},
                    [&](const MeshPartResult& r) { return r.stats.by_template[kites] > 0; });
 }
+
+TEST_CASE("a part that gives no valid mesh at its capped size is meshed at a smaller one",
+          "[mesh][poses][size]") {
+  // hugesize_stadium.json (extreme_094 of fuzz seed 44044): a stadium with two slots, a round
+  // hole and two more holes, whose mesh.size (1724) is 14 x its extent (121). Capped at a
+  // quarter of the extent, its faces are bays round a slot's round end that no template
+  // fills, in every attempt and pose; at 0.8 of the cap it meshes (184 quads).
+  const RawPart raw = read_brep_json(test_data_dir() + "/parts/hugesize_stadium.json");
+  const Part part = build_part(raw);
+  // The cap over the size asked for, the same in every pose (they are scaled by 1e3 and 1e-3).
+  const double cap_share = kMaxSizeFraction * part_extent(part) / *raw.mesh.size;
+  for (const MeshPartResult& r : check_three_poses(raw, 0.3)) {
+    REQUIRE(r.size_capped_from);
+    const double share = r.size / *r.size_capped_from;
+    CHECK(share < 0.9 * cap_share);
+    CHECK(share >= 0.999 * kCappedRetry.back() * cap_share);
+  }
+}

@@ -2,6 +2,7 @@
 // Shared by `laytracks mesh`, `batch`, the benchmark and the tests.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -31,6 +32,8 @@ double default_element_size(const Part& part);
 /// templates fail: of the 5 fuzzed parts meshed at 1.5 to 20 times their extent, all passed
 /// capped at 0.25 and at 0.35, one failed at 0.5, four at 1.
 constexpr double kMaxSizeFraction = 0.25;
+/// When the mesh fails at a capped size (mesh_part), these shares of the cap are tried in turn.
+constexpr std::array<double, 3> kCappedRetry = {0.8, 0.64, 0.5};
 
 /// The threads each mesh_part call uses for its passes (face fills, re-fill, smoothing); 0
 /// (the default): as many as the machine has. LAYTRACKS_THREADS in the environment, when set,
