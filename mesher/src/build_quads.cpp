@@ -949,7 +949,10 @@ class QuadBuilder {
         return std::min(g.edges[rails[k]].seg, g.edges[rails[(k + 1) % rails.size()]].seg);
       };
       while (rails.size() >= 2) {
-        double closest = limit;
+        // A gap within kAngleTie of the limit is not below it: a regular fan of 18 wedges has
+        // gaps of 20 degrees, kMinWedgeAngle exactly, and rounding read some of them below it
+        // in one pose only (fuzz seeds 42042 and 44044's 18-tipped stars).
+        double closest = limit - kAngleTie;
         std::size_t pick = rails.size();
         for (std::size_t k = 0; k < rails.size(); ++k) {
           const double angle = gap(k);
