@@ -101,6 +101,10 @@ class Marks {
   std::uint32_t stamp_ = 0;
 };
 
+/// Whether CavityMemo answers (set_cavity_memo) and how many it has answered (cavity_memo_hits).
+std::atomic<bool> g_memo_on{true};
+std::atomic<std::size_t> g_memo_hits{0};
+
 /// What plan_cavity decided for a cavity, by the bytes of its problem in the cavity's frame
 /// (the cycle, inner and ring nodes' positions there, which are free, and the quads over local
 /// ids): the fill and the two relaxations read nothing else, so the same problem gets the same
@@ -108,19 +112,39 @@ class Marks {
 /// of a faceted shell are often the same triangle turned (a cylinder's sides, a torus's), and
 /// a pass retries cavities that nothing has changed since. Shared by the patches' re-fills,
 /// which run in parallel: an answer computed twice at once is the same answer.
-std::atomic<bool> g_memo_on{true};
-std::atomic<std::size_t> g_memo_hits{0};
-
 class CavityMemo {
  public:
   struct Answer {
     bool keep = false;
-    std::size_t interior = 0, fresh = 0;
-    std::vector<Vec2> pos;    ///< the cycle's and the new inner nodes' positions, relaxed
-    std::vector<Quad> quads;  ///< the new quads (over cycle ids 0..n-1, inner ids n..)
+    /// When kept: the cycle's and the new inner nodes' positions, relaxed (cycle node i is
+    /// i, inner node k is n + k), the new quads over those ids, and their worst corner.
+    std::vector<Vec2> pos;
+    std::vector<Quad> quads;
     double worst = 0.0;
     std::string log;  ///< the LAYTRACKS_DEBUG_CAVITY line
+
+    /// Kept: the first `cycle` + interior positions of `now` (the fill relaxed with the ring)
+    /// and the fill's quads.
+    void keep_fill(const std::vector<Vec2>& now_pos,
+                   double now_worst,
+                   std::size_t cycle,
+                   std::size_t interior,
+                   const std::vector<Quad>& fill_quads) {
+      pos.assign(now_pos.begin(), now_pos.begin() + static_cast<std::ptrdiff_t>(cycle + interior));
+      quads = fill_quads;
+      worst = now_worst;
+    }
   };
+  /// The answer to `key`'s problem: the one remembered, else compute()'s (then remembered).
+  template <class Compute>
+  std::shared_ptr<const Answer> answer(std::string key, Compute compute) {
+    if (std::shared_ptr<const Answer> known = find(key)) return known;
+    std::shared_ptr<const Answer> computed = compute();
+    insert(std::move(key), computed);
+    return computed;
+  }
+
+ private:
   std::shared_ptr<const Answer> find(const std::string& key) const {
     if (!g_memo_on) return nullptr;
     const std::lock_guard<std::mutex> lock(mutex_);
@@ -137,7 +161,6 @@ class CavityMemo {
     answers_.emplace(std::move(key), std::move(answer));
   }
 
- private:
   /// The memo's bound (keys and positions), far above what it holds: the peak memory of
   /// torus_48_16_tri (1,536 facets, 60,463 quads) grows 76.1 -> 76.8 MB with it, of the tray
   /// at h = 0.25 (303,000 quads) 140.6 -> 143.6 MB.
@@ -658,21 +681,28 @@ class PatchRefill {
     all.edges = static_cast<std::uint32_t>(cycle.size());
     face.sides.push_back(all);
     // What follows reads the problem in the cavity's frame alone (CavityMemo): its key.
-    std::string key = problem_key(face.cycle, cycle, old_inner, old_quads, ring, cf);
-    std::shared_ptr<const CavityMemo::Answer> answer = memo_.find(key);
-    if (!answer) {
-      answer = refill_answer(face, cycle, old_inner, old_quads, ring, cf, bound);
-      memo_.insert(std::move(key), answer);
-    }
+    const std::shared_ptr<const CavityMemo::Answer> answer = memo_.answer(
+        problem_key(face.cycle, cycle, old_inner, old_quads, ring, cf),
+        [&] { return refill_answer(face, cycle, old_inner, old_quads, ring, cf, bound); });
     log += answer->log;
-    if (!answer->keep) return std::nullopt;
+    return plan_of(*answer, cavity, cycle, face.cycle, cf);
+  }
+
+  /// The plan of a kept answer (CavityMemo::Answer) for this cavity; none when not kept.
+  static std::optional<Plan> plan_of(const CavityMemo::Answer& answer,
+                                     const std::vector<std::uint32_t>& cavity,
+                                     const std::vector<std::uint32_t>& cycle,
+                                     const std::vector<Vec2>& cycle_local,
+                                     const LocalFrame& cf) {
+    if (!answer.keep) return std::nullopt;
+    const std::size_t interior = answer.pos.size() - cycle.size();
     Local now;
     now.ids = cycle;
-    now.ids.resize(n + answer->interior, kNew);
-    now.pos = answer->pos;
-    now.quads = answer->quads;
-    now.worst = answer->worst;
-    return Plan{cavity, cycle, face.cycle, cf, answer->interior, answer->fresh, std::move(now)};
+    now.ids.resize(answer.pos.size(), kNew);
+    now.pos = answer.pos;
+    now.quads = answer.quads;
+    now.worst = answer.worst;
+    return Plan{cavity, cycle, cycle_local, cf, interior, answer.quads.size(), std::move(now)};
   }
 
   /// The bytes of a cavity's problem in its frame: the positions of its cycle, inner and
@@ -730,13 +760,7 @@ class PatchRefill {
           now.worst, answer->keep ? " kept" : "");
       answer->log = line;
     }
-    if (!answer->keep) return answer;
-    answer->interior = fm.interior.size();
-    answer->fresh = fm.quads.size();
-    answer->pos.assign(now.pos.begin(),
-                       now.pos.begin() + static_cast<std::ptrdiff_t>(n + answer->interior));
-    answer->quads = fm.quads;
-    answer->worst = now.worst;
+    if (answer->keep) answer->keep_fill(now.pos, now.worst, n, fm.interior.size(), fm.quads);
     return answer;
   }
 
@@ -812,12 +836,9 @@ class PatchRefill {
     const Posed old = posed(cavity, cycle, inner);
     const std::vector<std::uint32_t> ring = ring_of(cavity, cycle);
     // From here on the problem in the cavity's frame alone is read (CavityMemo).
-    std::string key = "regrid" + problem_key(old.cycle, cycle, old.inner, old.quads, ring, old.cf);
-    std::shared_ptr<const CavityMemo::Answer> answer = memo_.find(key);
-    if (!answer) {
-      answer = regrid_answer(std::move(*fill), old, cycle, ring);
-      memo_.insert(std::move(key), answer);
-    }
+    const std::shared_ptr<const CavityMemo::Answer> answer =
+        memo_.answer("regrid" + problem_key(old.cycle, cycle, old.inner, old.quads, ring, old.cf),
+                     [&] { return regrid_answer(std::move(*fill), old, cycle, ring); });
     static const bool debug = std::getenv("LAYTRACKS_DEBUG_CAVITY") != nullptr;
     if (debug && !answer->log.empty()) {  // (none when no quad was tapered)
       Vec2 mid{0.0, 0.0};
@@ -829,14 +850,7 @@ class PatchRefill {
                     cavity.size(), inner.size(), turning);
       log += line + answer->log;
     }
-    if (!answer->keep) return std::nullopt;
-    Local now;
-    now.ids = cycle;
-    now.ids.resize(n + answer->interior, kNew);
-    now.pos = answer->pos;
-    now.quads = answer->quads;
-    now.worst = answer->worst;
-    return Plan{cavity, cycle, old.cycle, old.cf, answer->interior, answer->fresh, std::move(now)};
+    return plan_of(*answer, cavity, cycle, old.cycle, old.cf);
   }
 
   /// regrid_plan's fill placed in the cavity and judged against the old quads, both relaxed
@@ -879,13 +893,7 @@ class PatchRefill {
                     answer->keep ? " kept" : "");
       answer->log = line;
     }
-    if (!answer->keep) return answer;
-    answer->interior = fill.interior.size();
-    answer->fresh = fill.quads.size();
-    answer->pos.assign(now.pos.begin(),
-                       now.pos.begin() + static_cast<std::ptrdiff_t>(n + answer->interior));
-    answer->quads = fill.quads;
-    answer->worst = now.worst;
+    if (answer->keep) answer->keep_fill(now.pos, now.worst, n, fill.interior.size(), fill.quads);
     return answer;
   }
 
