@@ -2285,13 +2285,28 @@ std::optional<FaceMesh> pick_unstructured(const FaceInput& face, bool fans, int 
 /// sensitive to the last bits of the input, and a choice between two nearly equal templates
 /// would otherwise differ between poses of one part (and with it the element count).
 struct BestFill {
+  explicit BestFill(const FaceInput& face) : face_(&face) {}
+  const FaceInput* face_;
   std::optional<FaceMesh> best;
+  double best_shape = -1.0;  ///< best's mean_shape in steps, once computed (else -1)
   /// Takes m if it is better; true once the best is acceptable.
   bool consider(std::optional<FaceMesh> m, int depth) {
     static const bool debug = std::getenv("LAYTRACKS_DEBUG_FACE") != nullptr;
     if (debug && m) std::fprintf(stderr, "  [%d] %s J=%g\n", depth, to_string(m->kind), m->min_jacobian);
-    if (m && (!best || quantised(m->min_jacobian) > quantised(best->min_jacobian)))
+    if (!m) return best && best->min_jacobian >= kAcceptJacobian;
+    if (!best || quantised(m->min_jacobian) > quantised(best->min_jacobian)) {
       best = std::move(m);
+      best_shape = -1.0;
+    } else if (quantised(m->min_jacobian) == quantised(best->min_jacobian) &&
+               best->min_jacobian < kAcceptJacobian && m->min_jacobian > kMinValidJacobian &&
+               face_->cycle.size() > kLargeFace) {
+      if (best_shape < 0.0) best_shape = whole_steps(mean_shape(*best, *face_), kShapeStep);
+      const double shape = whole_steps(mean_shape(*m, *face_), kShapeStep);
+      if (shape > best_shape) {
+        best = std::move(m);
+        best_shape = shape;
+      }
+    }
     return best && best->min_jacobian >= kAcceptJacobian;
   }
 };
@@ -2299,7 +2314,7 @@ struct BestFill {
 /// Every template in turn; the first good one, else the best.
 std::optional<FaceMesh> fill_any(const FaceInput& face, int depth) {
   const std::size_t n = face.cycle.size();
-  BestFill b;
+  BestFill b(face);
   auto consider = [&](std::optional<FaceMesh> m) { return b.consider(std::move(m), depth); };
   const std::optional<FaceMesh>& best = b.best;
   const std::vector<Strip> strips = strips_of(face);
@@ -2542,7 +2557,7 @@ std::optional<FaceMesh> fill_cavity(const FaceInput& face) {
     NoRelax() { relax_off = true; }
     ~NoRelax() { relax_off = false; }
   } no_relax;
-  BestFill b;
+  BestFill b(face);
   auto consider = [&](std::optional<FaceMesh> m) { return b.consider(std::move(m), 0); };
   if (n == 4) {
     if (consider(fill_quad(face))) return b.best;

@@ -5,14 +5,17 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <optional>
 #include <random>
+#include <sstream>
 
 #include "fill.hpp"
 #include "laytracks/mesher/mesh_part.hpp"
 #include "laytracks/mesher/quality.hpp"
+#include "test_support.hpp"
 
 using namespace laytracks;
 using namespace laytracks::mesher_detail;
@@ -773,4 +776,60 @@ TEST_CASE("settled values of grid corners do not depend on the last bits", "[fil
           ++corners;
         }
   CHECK(corners > 1000);
+}
+
+namespace {
+
+/// A face saved from a part (tests/data/faces): a line "sides B10@0 R50@10 ..." (kind, edges
+/// and first node of each side), then the nodes "x y", counter-clockwise.
+FaceInput saved_face(const std::string& name) {
+  std::ifstream in(laytracks::test::test_data_dir() + "/faces/" + name);
+  REQUIRE(in.good());
+  FaceInput f;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream words(line);
+    if (line.rfind("sides", 0) == 0) {
+      std::string word;
+      words >> word;
+      while (words >> word) {
+        FaceSide side;
+        side.kind = word[0] == 'R' ? FaceSide::Kind::Rail : FaceSide::Kind::Boundary;
+        const std::size_t at = word.find('@');
+        side.edges = static_cast<std::uint32_t>(std::stoul(word.substr(1, at - 1)));
+        side.first = static_cast<std::uint32_t>(std::stoul(word.substr(at + 1)));
+        f.sides.push_back(side);
+      }
+      continue;
+    }
+    Vec2 p;
+    words >> p.x >> p.y;
+    f.cycle.push_back(p);
+  }
+  return f;
+}
+
+}  // namespace
+
+TEST_CASE("a large face whose sharp corner bounds every template takes the better-shaped quads",
+          "[fill]") {
+  // cgal_wiggly_03_cgal at --size 9.78: a corridor forking in two arms, one of them ended by a
+  // ragged cap whose sharp corners bound every template's worst corner to 0.04-0.05, the same
+  // in whole kChoiceSteps. The first of them (split) won: coarse triangles spanning the fork,
+  // 121 of its 192 quads tapered, edges up to 12.7 mean boundary edges long. Among equals the
+  // better mean shape wins now: the match, 456 quads of about the edges' size (at most 1.9
+  // mean edges), 51% tapered before any smoothing.
+  const FaceInput f = saved_face("forked_ragged_cap.txt");
+  REQUIRE(f.cycle.size() == 160);
+  const FaceMesh m = fill_face(f, "the forked face");
+  check_fill(f, m);
+  double mean_edge = 0.0;
+  for (std::size_t k = 0; k < f.cycle.size(); ++k)
+    mean_edge += distance(f.cycle[k], f.cycle[(k + 1) % f.cycle.size()]) / 160.0;
+  const auto [shortest, longest] = edge_range(f, m);
+  INFO(to_string(m.kind) << ": " << m.quads.size() << " quads, " << tapered_quads(f, m)
+                         << " tapered, longest edge " << longest / mean_edge << " mean edges");
+  CHECK(longest < 4.0 * mean_edge);
+  CHECK(100 * tapered_quads(f, m) <= 55 * m.quads.size());
 }
