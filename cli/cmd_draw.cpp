@@ -69,6 +69,7 @@ int run_draw(const std::vector<std::string>& argv) {
   if (view_arg && *view_arg != "oblique" && *view_arg != "unfolded") {
     throw UsageError("--view is unfolded or oblique");
   }
+  check_can_write(*out);
   const MeshingOptions options = meshing_options(args);
   const Part part = read_part(args.positional()[0], options.build);
   const std::string view = view_arg.value_or(part.patches.size() > 1 ? "oblique" : "unfolded");

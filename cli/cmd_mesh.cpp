@@ -69,6 +69,8 @@ int run_mesh(const std::vector<std::string>& argv) {
   const auto out = args.value("-o");
   if (!out) throw UsageError("mesh needs -o OUT.ext (.msh .vtu .bdf .inp .obj .off)");
   check_mesh_extension(*out);
+  check_can_write(*out);
+  if (const auto report = args.value("--report")) check_can_write(*report);
   const bool quiet = args.flag("--quiet");
   const auto t0 = std::chrono::steady_clock::now();
   const MeshingOptions options = meshing_options(args);

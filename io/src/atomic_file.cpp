@@ -1,5 +1,7 @@
 #include "laytracks/io/atomic_file.hpp"
 
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -47,6 +49,21 @@ void write_file_atomically(const std::string& path,
     fs::remove(tmp, ignored);
     throw;
   }
+}
+
+void check_can_write(const std::string& path) {
+  const fs::path target(path);
+  if (target.filename().empty()) throw Error("cannot write \"" + path + "\": not a file name");
+  const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::error_code ec;
+  if (!fs::exists(folder, ec))
+    throw Error("cannot write " + path + ": the folder " + folder.string() + " does not exist");
+  if (!fs::is_directory(folder, ec))
+    throw Error("cannot write " + path + ": " + folder.string() + " is not a folder");
+  if (fs::is_directory(target, ec)) throw Error("cannot write " + path + ": it is a folder");
+  // The temporary file goes beside the target: the folder must take new files.
+  if (::access(folder.c_str(), W_OK) != 0)
+    throw Error("cannot write " + path + ": " + std::strerror(errno));
 }
 
 }  // namespace laytracks

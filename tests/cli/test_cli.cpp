@@ -357,6 +357,20 @@ TEST_CASE("mesh refuses what it cannot mesh, writes nothing, and says where", "[
   CHECK(ext.status == 2);
   CHECK_THAT(ext.err, Catch::Contains(".msh"));
   CHECK_FALSE(fs::exists(d / "x.stl"));
+  // A folder that does not exist, for the mesh or the report: status 4, before any work (no
+  // stage begun), nothing written.
+  for (const std::string& where :
+       {" -o " + q(d / "no" / "x.msh"),
+        " -o " + q(d / "old.msh") + " --report " + q(d / "no" / "r.json")}) {
+    const Run gone = run("mesh " + q(samples_dir() + "/bracket.json") + where);
+    CHECK(gone.status == 4);
+    CHECK_THAT(gone.err, Catch::Contains("/no does not exist"));
+    CHECK_THAT(gone.err, !Catch::Contains("medial"));
+    CHECK(slurp(d / "old.msh") == "previous content");
+  }
+  const Run folder = run("draw " + q(samples_dir() + "/bracket.json") + " --stage mesh -o " + q(d));
+  CHECK(folder.status == 4);
+  CHECK_THAT(folder.err, Catch::Contains("it is a folder"));
   // A size that would need more quads than memory holds (1e-10 ran out of memory, 1e-300
   // overflowed to a 6-quad mesh): status 1, before any work, the old file kept.
   for (const char* size : {"1e-300", "1e-10", "0.0005"}) {

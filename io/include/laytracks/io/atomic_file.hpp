@@ -13,4 +13,9 @@ namespace laytracks {
 void write_file_atomically(const std::string& path,
                            const std::function<void(std::ostream&)>& write);
 
+/// Throws laytracks::Error, naming `path`, when write_file_atomically could not write it: its
+/// folder does not exist, is not a folder or is not writable, or `path` is a folder. Called
+/// before long work, so that a run does not fail at its end for a mistyped folder.
+void check_can_write(const std::string& path);
+
 }  // namespace laytracks
