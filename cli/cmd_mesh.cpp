@@ -95,10 +95,10 @@ int run_mesh(const std::vector<std::string>& argv) {
     throw;
   }
   if (r.size_capped_from && !quiet) {
-    const double cap = kMaxSizeFraction * part_extent(part);
+    const double extent = part_extent(part), cap = kMaxSizeFraction * extent;
     std::cerr << "laytracks: note: element size " << *r.size_capped_from
-              << " is more than a quarter of the part's extent (" << part_extent(part)
-              << "): meshed at " << r.size;
+              << " is more than a quarter of the part's extent (" << extent << "): meshed at "
+              << r.size;
     if (r.size < cap) std::cerr << " (at " << cap << " no valid mesh came)";
     std::cerr << "\n";
   }

@@ -57,6 +57,13 @@ RawPart finer(const std::string& path, double factor) {
   return raw;
 }
 
+/// The index of a face template in QuadStats::by_template, by its name (kTemplateNames).
+std::size_t template_index(const std::string& name) {
+  const auto at = std::find(kTemplateNames.begin(), kTemplateNames.end(), name);
+  REQUIRE(at != kTemplateNames.end());
+  return static_cast<std::size_t>(at - kTemplateNames.begin());
+}
+
 }  // namespace
 
 TEST_CASE("every part meshes to a valid all-quad mesh", "[mesh]") {
@@ -614,9 +621,7 @@ TEST_CASE("a face of three corners is three grids round one node", "[mesh][face]
   // 20.5%). Three grids round one node (sided_fill): one quad at each apex, 0.842.
   for (const MeshPartResult& r :
        check_three_poses(finer(cases_dir() + "/external/cgal_wheel_16_spokes.json", 0.8), 0.8))
-    CHECK(r.stats.by_template[static_cast<std::size_t>(
-              std::find(kTemplateNames.begin(), kTemplateNames.end(), std::string("sided")) -
-              kTemplateNames.begin())] > 0);
+    CHECK(r.stats.by_template[template_index("sided")] > 0);
 }
 
 TEST_CASE("rails converging on the axis a fraction of an element apart meet at one node",
@@ -1259,10 +1264,7 @@ TEST_CASE("a needle that no template fills is cut with kites in the last attempt
   // needle_kites_thin.json (blob_058 of fuzz seed 40050): a face of 6 nodes, a needle of 0.25
   // degrees with a reflex node of 181.5 degrees beside a flat one, so thin that the kite's
   // node pushed half the way out leaves it (a smaller push stays inside): 1,934 quads.
-  const auto kites = static_cast<std::size_t>(
-      std::find(kTemplateNames.begin(), kTemplateNames.end(), std::string("kites")) -
-      kTemplateNames.begin());
-  REQUIRE(kites < kTemplateNames.size());
+  const std::size_t kites = template_index("kites");
   check_test_parts({{"needle_kites.json", 0.0}, {"needle_kites_thin.json", 0.0}},
                    [&](const MeshPartResult& r) { return r.stats.by_template[kites] > 0; });
 }
