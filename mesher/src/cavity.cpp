@@ -80,6 +80,21 @@ constexpr int kRegridSweeps = 100;
 /// the uniform size: its centre's pole of 40 small quads became 20 large ones, the quads at
 /// the centre twice as large as the rest).
 constexpr double kRegridCountRatio = 1.5;
+/// Whole patches (whole_plan): a patch of at most kWholeQuads quads whose outline has three,
+/// four or five corners and no hole is tried as one cavity first.
+constexpr std::size_t kWholeQuads = 4000;
+constexpr std::size_t kWholeNodes = 1000;
+
+/// Whether the quad a, b, c, d (counter-clockwise, in a plane) is beyond a threshold of
+/// quality.md that Table III counts: taper, skew or aspect ratio.
+bool beyond_thresholds(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  const QuadQuality m =
+      measure_quad({Vec3{a.x, a.y, 0.0}, Vec3{b.x, b.y, 0.0}, Vec3{c.x, c.y, 0.0},
+                    Vec3{d.x, d.y, 0.0}},
+                   Vec3{0.0, 0.0, 1.0});
+  return m.taper <= QualityThresholds::kTaper || m.skew_deg >= QualityThresholds::kSkewDeg ||
+         m.aspect_ratio >= QualityThresholds::kAspectRatio;
+}
 
 /// A set of ids cleared in O(1): an id is in it when its mark is the present stamp. Each user
 /// keeps one per thread (the attempts run in parallel).
@@ -213,6 +228,27 @@ class PatchRefill {
   }
 
   const std::vector<bool>& alive() const { return alive_; }
+
+  /// The whole patch as one cavity (whole_plan), before the passes; 1 when kept.
+  std::size_t whole() {
+    std::vector<std::uint32_t> cavity;
+    for (std::uint32_t q = 0; q < pq_.quads.size(); ++q)
+      if (alive_[q]) cavity.push_back(q);
+    if (cavity.empty() || cavity.size() > kWholeQuads) return 0;
+    // Nothing to gain where no quad is beyond a threshold (most large patches).
+    if (std::none_of(cavity.begin(), cavity.end(), [&](std::uint32_t q) {
+          const Quad& x = pq_.quads[q];
+          return beyond_thresholds(pq_.pos[x[0]], pq_.pos[x[1]], pq_.pos[x[2]], pq_.pos[x[3]]);
+        }))
+      return 0;
+    std::string log;
+    std::optional<Plan> plan = whole_plan(cavity, log);
+    if (!log.empty()) std::fputs(log.c_str(), stderr);
+    if (!plan) return 0;
+    ++batch_id_;
+    commit(*plan, 0);
+    return 1;
+  }
 
  private:
   /// Attempts attempt_of(0) .. attempt_of(total - 1) in order, in batches evaluated in
@@ -853,13 +889,50 @@ class PatchRefill {
     return plan_of(*answer, cavity, cycle, old.cycle, old.cf);
   }
 
+  /// A patch read by its outline's corners (polygon_corners) rather than by its quads: three
+  /// or five corners get sided_fill's grids round one centre, four a lattice; judged as a
+  /// regrid is. A small facet of a faceted shell is a triangle whose every side the rails of
+  /// its neighbours cross: its faces, cut by rails from three or more directions, are rows of
+  /// tapered quads, where three grids round its centre are close to parallelograms.
+  std::optional<Plan> whole_plan(const std::vector<std::uint32_t>& cavity,
+                                 std::string& log) const {
+    const std::optional<std::vector<std::uint32_t>> found = cavity_cycle(cavity, kWholeNodes);
+    if (!found) return std::nullopt;  // (a patch with a hole has more than one cycle)
+    const std::vector<std::uint32_t>& cycle = *found;
+    const std::optional<std::vector<std::uint32_t>> inner_found = inner_nodes(cavity, cycle);
+    if (!inner_found || inner_found->empty()) return std::nullopt;
+    const Posed old = posed(cavity, cycle, *inner_found);
+    const std::optional<std::vector<std::uint32_t>> corners = polygon_corners(old.cycle);
+    if (!corners || corners->size() < 3 || corners->size() > 5) return std::nullopt;
+    std::vector<int> turn(cycle.size(), 0);
+    for (std::uint32_t k : *corners) turn[k] = 1;
+    std::optional<TurnFill> fill = corners->size() == 4 ? lattice_fill(turn) : sided_fill(turn);
+    if (!fill) return std::nullopt;
+    const double more =
+        static_cast<double>(fill->quads.size()) / static_cast<double>(cavity.size());
+    if (more > kRegridCountRatio || more * kRegridCountRatio < 1.0) return std::nullopt;
+    const std::vector<std::uint32_t> ring = ring_of(cavity, cycle);
+    const std::shared_ptr<const CavityMemo::Answer> answer = memo_.answer(
+        "whole" + problem_key(old.cycle, cycle, old.inner, old.quads, ring, old.cf),
+        [&] { return regrid_answer(std::move(*fill), old, cycle, ring, true); });
+    static const bool debug = std::getenv("LAYTRACKS_DEBUG_CAVITY") != nullptr;
+    if (debug && !answer->log.empty()) {
+      char line[200];
+      std::snprintf(line, sizeof line, "whole patch: %zu quads, %zu corners", cavity.size(),
+                    corners->size());
+      log += line + answer->log;
+    }
+    return plan_of(*answer, cavity, cycle, old.cycle, old.cf);
+  }
+
   /// regrid_plan's fill placed in the cavity and judged against the old quads, both relaxed
   /// with the ring.
   std::shared_ptr<const CavityMemo::Answer> regrid_answer(
       TurnFill fill,
       const Posed& old,
       const std::vector<std::uint32_t>& cycle,
-      const std::vector<std::uint32_t>& ring) const {
+      const std::vector<std::uint32_t>& ring,
+      bool every_measure = false) const {
     auto answer = std::make_shared<CavityMemo::Answer>();
     const std::size_t n = cycle.size();
     const LocalFrame& cf = old.cf;
@@ -868,12 +941,13 @@ class PatchRefill {
     // Judged after kRefillSweeps sweeps whatever the smoothing asked for, so that the choice,
     // and the element count, do not depend on it; the new quads keep those positions (also
     // with --smooth 0: the harmonic positions alone may fold where the cavity is not convex).
-    const auto tapered = [](const Local& l, std::size_t count) {
+    const auto tapered = [every_measure](const Local& l, std::size_t count) {
       std::size_t t = 0;
       for (std::size_t q = 0; q < count; ++q) {
         const Quad& x = l.quads[q];
-        if (quad_taper(l.pos[x[0]], l.pos[x[1]], l.pos[x[2]], l.pos[x[3]]) <=
-            QualityThresholds::kTaper)
+        const Vec2 a = l.pos[x[0]], b = l.pos[x[1]], c = l.pos[x[2]], d = l.pos[x[3]];
+        if (every_measure ? beyond_thresholds(a, b, c, d)
+                          : quad_taper(a, b, c, d) <= QualityThresholds::kTaper)
           ++t;
       }
       return t;
@@ -883,8 +957,10 @@ class PatchRefill {
     if (t_was == 0) return answer;  // nothing to gain
     Local now = relaxed(cyc, cycle, fill.interior, fill.quads, ring, cf, kRefillSweeps);
     const std::size_t t_now = tapered(now, fill.quads.size());
-    answer->keep = t_now < t_was && now.worst > kMinValidJacobian &&
-                   settled(now.worst) >= std::min(settled(was.worst), below_);
+    // A whole patch keeps its worst corner (every_measure): cheaper than a regrid's bound,
+    // which may trade a patch's worst down to the threshold for fewer tapered quads.
+    const double floor = every_measure ? settled(was.worst) : std::min(settled(was.worst), below_);
+    answer->keep = t_now < t_was && now.worst > kMinValidJacobian && settled(now.worst) >= floor;
     static const bool debug = std::getenv("LAYTRACKS_DEBUG_CAVITY") != nullptr;
     if (debug) {
       char line[200];
@@ -991,6 +1067,7 @@ std::size_t refill_cavities(
     if (r.pq.quads.empty()) return;
     PatchRefill refill(r.pq, iterations, below, inner && r.pq.quads.size() >= kRefillParallelQuads,
                        memo);
+    r.regrids = refill.whole();
     int pass = 0;
     for (; pass < kRefillPasses; ++pass) {
       const std::size_t more = refill.run(pass);
@@ -998,7 +1075,7 @@ std::size_t refill_cavities(
       if (more == 0) break;
     }
     r.kept += refill.run(pass, true);
-    r.regrids = refill.regrid();
+    r.regrids += refill.regrid();
     if (r.kept + r.regrids > 0) r.alive = refill.alive();
   });
   std::size_t kept = 0, regridded = 0;

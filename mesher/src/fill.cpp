@@ -1009,15 +1009,11 @@ double ccw_angle(Vec2 from, Vec2 to) {
   return a;
 }
 
-namespace {
-
-/// A polygon read by its corners: when exactly four nodes turn by more than 30.5 degrees
-/// (interior angle below kCornerAngle) and none is reflex, its four sides as a strip
-/// (cap1 from the first corner, then rail1, cap2, rail2), `rotate` sides later. Off round
-/// values (150 degrees until session 34): a regular 12-gon's corners, an arc's 30-degree
-/// chords, are 150 degrees exactly, below or above it by the pose's rounding, and a fuzzed
-/// rounded rectangle far smaller than its element (fuzz seed 34034, extreme_006) read a
-/// reflex cut's piece as four sides when turned and as none as given: 136 quads against 213.
+/// A corner turns by more than 30.5 degrees. Off round values (150 degrees until session
+/// 34): a regular 12-gon's corners, an arc's 30-degree chords, are 150 degrees exactly, below
+/// or above it by the pose's rounding, and a fuzzed rounded rectangle far smaller than its
+/// element (fuzz seed 34034, extreme_006) read a reflex cut's piece as four sides when turned
+/// and as none as given: 136 quads against 213.
 constexpr double kCornerAngle = 149.5 * kPi / 180.0;
 
 /// The corners of a polygon (interior angle below kCornerAngle), in order; none when a node
@@ -1032,6 +1028,11 @@ std::optional<std::vector<std::uint32_t>> polygon_corners(const std::vector<Vec2
   return corners;
 }
 
+namespace {
+
+/// A polygon read by its corners: when exactly four nodes are corners (polygon_corners), its
+/// four sides as a strip (cap1 from the first corner, then rail1, cap2, rail2), `rotate`
+/// sides later.
 std::optional<Strip> corner_strip(const std::vector<Vec2>& poly, std::size_t rotate) {
   const auto n = static_cast<std::uint32_t>(poly.size());
   const std::optional<std::vector<std::uint32_t>> found = polygon_corners(poly);

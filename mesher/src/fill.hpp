@@ -282,6 +282,11 @@ double shortest_norm(const std::vector<Vec2>& vs);
 /// Interior angle of the counter-clockwise polygon `poly` at node i (radians, in (0, 2 pi)).
 double interior_angle(const std::vector<Vec2>& poly, std::size_t i);
 
+/// The corners of the counter-clockwise polygon `poly` (interior angle below 149.5 degrees),
+/// in order; none when a node is reflex beyond 200 degrees. How corner_strip, fill_sided and
+/// the re-fill's whole patches (refill_cavities) read a polygon.
+std::optional<std::vector<std::uint32_t>> polygon_corners(const std::vector<Vec2>& poly);
+
 /// A round polygon: every interior angle between kRoundMin and kRoundMax. The O-grid's faces
 /// (fill_ogrid), and the loops whose rails drop_disk_rails drops when they nearly meet.
 constexpr double kRoundMin = 120.0 * kPi / 180.0;

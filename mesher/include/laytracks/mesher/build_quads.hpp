@@ -135,7 +135,11 @@ std::size_t slide_boundary_nodes(const Part& part,
 /// quad's edges, else those at its nodes, else those at their nodes, are taken out as one
 /// polygon, filled again by the face templates (fill_cavity) and relaxed with the quads round
 /// them (`iterations` sweeps, at most 4); the new quads are kept when their worst beats the
-/// worst of the old ones relaxed the same way by 0.02. Then the regrid pass (docs/mesher.md,
+/// worst of the old ones relaxed the same way by 0.02. Before those passes, a patch of at most
+/// 4,000 quads without a hole whose outline has three to five corners is tried whole, as three
+/// or five grids round one centre or one grid (docs/mesher.md, "Whole patches"), kept when
+/// fewer quads are beyond a threshold of taper, skew or aspect and the worst corner is no
+/// lower; counted as a regrid. Then the regrid pass (docs/mesher.md,
 /// "Regrid"): round each irregular interior node (not in four quads), rings of quads whose
 /// boundary turns as a rectangle's, a triangle's or a pentagon's are filled again by a grid
 /// with no irregular node inside, or one, kept when that leaves fewer tapered quads (taper <=
