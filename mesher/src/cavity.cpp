@@ -88,10 +88,9 @@ constexpr std::size_t kWholeNodes = 1000;
 /// Whether the quad a, b, c, d (counter-clockwise, in a plane) is beyond a threshold of
 /// quality.md that Table III counts: taper, skew or aspect ratio.
 bool beyond_thresholds(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  const QuadQuality m =
-      measure_quad({Vec3{a.x, a.y, 0.0}, Vec3{b.x, b.y, 0.0}, Vec3{c.x, c.y, 0.0},
-                    Vec3{d.x, d.y, 0.0}},
-                   Vec3{0.0, 0.0, 1.0});
+  const QuadQuality m = measure_quad(
+      {Vec3{a.x, a.y, 0.0}, Vec3{b.x, b.y, 0.0}, Vec3{c.x, c.y, 0.0}, Vec3{d.x, d.y, 0.0}},
+      Vec3{0.0, 0.0, 1.0});
   return m.taper <= QualityThresholds::kTaper || m.skew_deg >= QualityThresholds::kSkewDeg ||
          m.aspect_ratio >= QualityThresholds::kAspectRatio;
 }
@@ -894,8 +893,7 @@ class PatchRefill {
   /// regrid is. A small facet of a faceted shell is a triangle whose every side the rails of
   /// its neighbours cross: its faces, cut by rails from three or more directions, are rows of
   /// tapered quads, where three grids round its centre are close to parallelograms.
-  std::optional<Plan> whole_plan(const std::vector<std::uint32_t>& cavity,
-                                 std::string& log) const {
+  std::optional<Plan> whole_plan(const std::vector<std::uint32_t>& cavity, std::string& log) const {
     const std::optional<std::vector<std::uint32_t>> found = cavity_cycle(cavity, kWholeNodes);
     if (!found) return std::nullopt;  // (a patch with a hole has more than one cycle)
     const std::vector<std::uint32_t>& cycle = *found;
@@ -912,9 +910,9 @@ class PatchRefill {
         static_cast<double>(fill->quads.size()) / static_cast<double>(cavity.size());
     if (more > kRegridCountRatio || more * kRegridCountRatio < 1.0) return std::nullopt;
     const std::vector<std::uint32_t> ring = ring_of(cavity, cycle);
-    const std::shared_ptr<const CavityMemo::Answer> answer = memo_.answer(
-        "whole" + problem_key(old.cycle, cycle, old.inner, old.quads, ring, old.cf),
-        [&] { return regrid_answer(std::move(*fill), old, cycle, ring, true); });
+    const std::shared_ptr<const CavityMemo::Answer> answer =
+        memo_.answer("whole" + problem_key(old.cycle, cycle, old.inner, old.quads, ring, old.cf),
+                     [&] { return regrid_answer(std::move(*fill), old, cycle, ring, true); });
     static const bool debug = std::getenv("LAYTRACKS_DEBUG_CAVITY") != nullptr;
     if (debug && !answer->log.empty()) {
       char line[200];
@@ -927,12 +925,11 @@ class PatchRefill {
 
   /// regrid_plan's fill placed in the cavity and judged against the old quads, both relaxed
   /// with the ring.
-  std::shared_ptr<const CavityMemo::Answer> regrid_answer(
-      TurnFill fill,
-      const Posed& old,
-      const std::vector<std::uint32_t>& cycle,
-      const std::vector<std::uint32_t>& ring,
-      bool every_measure = false) const {
+  std::shared_ptr<const CavityMemo::Answer> regrid_answer(TurnFill fill,
+                                                          const Posed& old,
+                                                          const std::vector<std::uint32_t>& cycle,
+                                                          const std::vector<std::uint32_t>& ring,
+                                                          bool every_measure = false) const {
     auto answer = std::make_shared<CavityMemo::Answer>();
     const std::size_t n = cycle.size();
     const LocalFrame& cf = old.cf;
