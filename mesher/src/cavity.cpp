@@ -84,6 +84,9 @@ constexpr double kRegridCountRatio = 1.5;
 /// four or five corners and no hole is tried as one cavity first.
 constexpr std::size_t kWholeQuads = 4000;
 constexpr std::size_t kWholeNodes = 1000;
+/// A whole patch's fill may have up to this many times its quads (an equilateral triangle's
+/// three grids have 1.73x the rails' fill, quads h along the sides by 0.58 h across).
+constexpr double kWholeMoreQuads = 2.0;
 
 /// Whether the quad a, b, c, d (counter-clockwise, in a plane) is beyond a threshold of
 /// quality.md that Table III counts: taper, skew or aspect ratio.
@@ -908,7 +911,7 @@ class PatchRefill {
     if (!fill) return std::nullopt;
     const double more =
         static_cast<double>(fill->quads.size()) / static_cast<double>(cavity.size());
-    if (more > kRegridCountRatio || more * kRegridCountRatio < 1.0) return std::nullopt;
+    if (more > kWholeMoreQuads || more * kRegridCountRatio < 1.0) return std::nullopt;
     const std::vector<std::uint32_t> ring = ring_of(cavity, cycle);
     const std::shared_ptr<const CavityMemo::Answer> answer =
         memo_.answer("whole" + problem_key(old.cycle, cycle, old.inner, old.quads, ring, old.cf),
