@@ -133,8 +133,12 @@ class Checker {
     return "mesh edge from " + node_text(a) + " to " + node_text(b);
   }
 
-  /// True when point c (patch frame) lies between a chord of one of the patch's arcs and the
-  /// arc, on the side of the arc's centre: outside the polygon but inside the true patch.
+  /// True when point c (patch frame), outside the patch's polygon, lies between one of its
+  /// chords of an arc and the mesh's own chord of that arc, which may be coarser (rule 4: the
+  /// polygons the mesher used, each chord's sagitta within the chord tolerance): within the
+  /// circle, beyond the polygon's chord; for a concave arc (the centre on the far side, a
+  /// hole's rounded corner) no deeper into the circle than the chord tolerance. (Fuzz seed
+  /// 52052's extreme_059: a hole's corner rounded by 0.3 at h = 0.8, one chord in the mesh.)
   bool in_arc_segment(std::size_t p, Vec2 c) const {
     const Patch& patch = part_.patches[p];
     bool inside = false;
@@ -148,9 +152,11 @@ class Checker {
       const double len2 = dot(d, d);
       if (!(len2 > 0.0)) return;
       const double t = dot(c - s.a, d) / len2;
-      inside = cross(d, centre - s.a) > 0.0 &&  // the material side holds the centre: convex
-               cross(d, c - s.a) <= 0.0 &&      // c beyond the chord
-               t >= 0.0 && t <= 1.0 && distance(c, centre) <= a.radius;
+      const bool convex = cross(d, centre - s.a) > 0.0;  // the material side holds the centre
+      const double from_centre = distance(c, centre);
+      inside = cross(d, c - s.a) <= 0.0 &&  // c beyond the chord
+               t >= 0.0 && t <= 1.0 && from_centre <= a.radius &&
+               (convex || from_centre >= a.radius - part_.chord_tol);
     });
     return inside;
   }

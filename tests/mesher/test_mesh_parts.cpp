@@ -982,6 +982,17 @@ TEST_CASE("the facets of a jittered icosphere are filled again whole, as three g
   }
 }
 
+TEST_CASE("a quad between a hole's one-chord fillet and its arc lies on the patch",
+          "[mesh][check][arcs]") {
+  // hole_fillet_one_chord.json (fuzz seed 52052, extreme_059): a hole's corner rounded by a
+  // 90-degree arc of radius 0.30 at h = 0.80. The mesh takes the arc as one chord (sagitta
+  // 0.087, within the chord tolerance 0.16), and a thin quad on that chord has its centroid
+  // 0.008 inside the circle: outside the part's finer polygon, inside the mesher's. The check
+  // refused it (rule 3) in every pose until it read concave arcs as it reads convex ones.
+  const RawPart raw = read_brep_json(test_data_dir() + "/parts/hole_fillet_one_chord.json");
+  check_three_poses(raw, 0.6);
+}
+
 TEST_CASE("a round hole's rails spread over it far below the size the part was made for",
           "[mesh][round]") {
   // plate_with_hole (mesh.size 1) at h = 0.1. Until session 23 the hole was a polygon of
