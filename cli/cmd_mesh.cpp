@@ -101,6 +101,9 @@ int run_mesh(const std::vector<std::string>& argv) {
               << r.size;
     if (r.size < cap) std::cerr << " (at " << cap << " no valid mesh came)";
     std::cerr << "\n";
+  } else if (r.size_failed_at && !quiet) {
+    std::cerr << "laytracks: note: at element size " << *r.size_failed_at << " no valid mesh came ("
+              << r.failed_because << "); meshed at " << r.size << "\n";
   }
   write_part_mesh(*out, part, r.mesh);
   const double seconds =
@@ -114,7 +117,9 @@ int run_mesh(const std::vector<std::string>& argv) {
       doc["min_end_width"] = r.size;
     } else {
       doc["size"] = r.size;
-      if (r.size_capped_from) doc["size_asked"] = *r.size_capped_from;
+      if (r.size_capped_from || r.size_failed_at)
+        doc["size_asked"] = r.size_capped_from ? *r.size_capped_from : *r.size_failed_at;
+      if (r.size_failed_at) doc["size_failed"] = r.failed_because;
     }
     doc["smooth"] = options.mesh.smooth;
     doc["quads"] = r.mesh.elements.size();

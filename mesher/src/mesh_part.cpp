@@ -275,16 +275,19 @@ MeshPartResult mesh_part(const Part& part,
     // A uniform size capped at kMaxSizeFraction x the part's extent asks for the coarsest mesh
     // there is; where that fails (a stadium whose faces at that size are bays round a slot's
     // round end: fuzz seed 44044's extreme_094), the sizes kCappedRetry x the cap are tried in
-    // turn, the same in every pose. The size asked for stays in size_capped_from.
+    // turn; any other uniform size that fails, kFailedRetry x it. The same in every pose.
     std::optional<double> asked;
-    const double cap = uniform_element_size(part, options, &asked);
-    if (asked && !options.adaptive.value_or(part.mesh.mode == MeshMode::Adaptive)) {
-      for (const double share : kCappedRetry) {
+    const double size = uniform_element_size(part, options, &asked);
+    if (!options.adaptive.value_or(part.mesh.mode == MeshMode::Adaptive)) {
+      const std::array<double, 3>& shares = asked ? kCappedRetry : kFailedRetry;
+      for (const double share : shares) {
         MeshPartOptions smaller = options;
-        smaller.size = share * cap;
+        smaller.size = share * size;
         try {
           MeshPartResult r = mesh_part_unchecked_input(part, smaller, on_stage);
           r.size_capped_from = asked;
+          r.size_failed_at = size;
+          r.failed_because = e.what();
           return r;
         } catch (const InternalError&) {
         }

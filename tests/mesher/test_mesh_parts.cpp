@@ -1313,6 +1313,25 @@ TEST_CASE("a part that gives no valid mesh at its capped size is meshed at a sma
   }
 }
 
+TEST_CASE("a part that gives no valid mesh at the size asked is meshed at 0.9 of it",
+          "[mesh][poses][size]") {
+  // comb_spikes_sector.json (split_083 of fuzz seed 48048): a sector of a six-sector part
+  // whose outline zigzags within 0.3 of an element, with spikes of 0.05 and 8 degrees. At
+  // its mesh.size one face (58 nodes) gets no valid quads from any template, in every pose;
+  // at 0.9 of it the faces fall otherwise and it meshes (kFailedRetry).
+  const RawPart raw = read_brep_json(test_data_dir() + "/parts/comb_spikes_sector.json");
+  for (const MeshPartResult& r : check_three_poses(raw, 0.0)) {
+    REQUIRE(r.size_failed_at);
+    CHECK(!r.size_capped_from);
+    CHECK(r.size == Approx(kFailedRetry.front() * *r.size_failed_at).epsilon(1e-12));
+    CHECK_THAT(r.failed_because, Catch::Contains("no template gives valid quads"));
+  }
+  // A part that meshes at its size says nothing of the kind.
+  const MeshPartResult plain = mesh_part(build_part(read_brep_json(cases_dir() + "/l_shape.json")));
+  CHECK(!plain.size_failed_at);
+  CHECK(plain.failed_because.empty());
+}
+
 TEST_CASE("a star of 18 tips keeps its centre's 20-degree wedges in every pose", "[mesh][poses]") {
   // star18_wedges.json (extreme_011 of fuzz seed 44044, mirrored and scaled as the fuzz run
   // did): 18 tips round one centre, whose wedges are 20 degrees apart, kMinWedgeAngle exactly.

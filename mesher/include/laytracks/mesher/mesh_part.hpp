@@ -34,6 +34,12 @@ double default_element_size(const Part& part);
 constexpr double kMaxSizeFraction = 0.25;
 /// When the mesh fails at a capped size (mesh_part), these shares of the cap are tried in turn.
 constexpr std::array<double, 3> kCappedRetry = {0.8, 0.64, 0.5};
+/// When the mesh fails at a uniform size that was not capped (an internal error: no template
+/// fills a face, or the self-check refuses the mesh), these shares of it are tried in turn
+/// (mesh_part), the same in every pose; the size asked for stays in size_failed_at. Fuzz seed
+/// 48048's split_083 (a comb of spikes of 0.05 degrees in one face) fails at its size and
+/// meshes at 0.9 of it.
+constexpr std::array<double, 3> kFailedRetry = {0.9, 0.8, 0.64};
 
 /// The threads each mesh_part call uses for its passes (face fills, re-fill, smoothing); 0
 /// (the default): as many as the machine has. LAYTRACKS_THREADS in the environment, when set,
@@ -83,6 +89,10 @@ struct MeshPartResult {
   /// Uniform: the size asked for when it was larger than kMaxSizeFraction x part_extent and
   /// `size` is that cap instead.
   std::optional<double> size_capped_from;
+  /// Uniform: the size asked for (or its cap) when no valid mesh came there and `size` is a
+  /// share of it (kFailedRetry, kCappedRetry); `failed_because` says why it failed.
+  std::optional<double> size_failed_at;
+  std::string failed_because;
   bool adaptive = false;
   double dtheta_deg = 0.0;  ///< adaptive: Delta theta_in
   QuadStats stats;
