@@ -83,6 +83,8 @@ struct Row {
   Status status = kOk;  ///< kOk, kInputRefused, kInternal or kIo
   std::string error;
   double size = 0.0;  ///< uniform: the element size; adaptive: MIN_END_WIDTH
+  /// Uniform: the size asked for when no valid mesh came there (MeshPartResult::size_failed_at)
+  double size_failed = 0.0;
   bool adaptive = false;
   double neighbour_ratio = 1.0;  ///< the worst size ratio of two neighbouring quads
   double fine_coarse = 1.0;      ///< mean size of the finest tenth over the coarsest tenth
@@ -255,6 +257,7 @@ Row run_job(const Job& job, const MeshingOptions& options, const fs::path& out) 
     const Part part = read_part(job.input.string(), options.build);
     const MeshPartResult r = mesh_part(part, options.mesh);
     row.size = r.size;
+    if (r.size_failed_at) row.size_failed = *r.size_failed_at;
     row.adaptive = r.adaptive;
     row.neighbour_ratio = r.quality.worst_neighbour_ratio;
     row.fine_coarse = r.quality.fine_coarse_ratio;
@@ -313,6 +316,11 @@ class Progress {
       std::snprintf(buf, sizeof buf, "ok, %zu quads, min scaled Jacobian %.3f, %.2f s", row.quads,
                     row.min_jacobian, row.seconds);
       line = buf;
+      if (row.size_failed > 0.0) {
+        std::snprintf(buf, sizeof buf, " (meshed at size %g: at %g no valid mesh came)", row.size,
+                      row.size_failed);
+        line += buf;
+      }
     } else {
       line = std::string(status_word(row.status)) + ": " + one_line(row.error);
     }
