@@ -5,9 +5,10 @@
 // its quads are tapered (half an element from a bend of a narrow strip: taper 0.65), which
 // the smoothing, moving interior nodes only, cannot mend. Such a foot slides along its
 // boundary (the line through its two boundary neighbours, or its arc) to where the worst of
-// its quads is best. After the smoothing (and then smoothed round, as the late flips are):
-// judged on the smoothed quads; nodes and quads are not added or removed, so the counts are
-// the re-fill's, the same in every pose.
+// its quads is best; since session 40 a node on a seam between patches too (the tracks of a
+// faceted shell cross its facets' edges as strips a quarter of an element wide). After the
+// smoothing (and then smoothed round, as the late flips are): judged on the smoothed quads; nodes
+// and quads are not added or removed, so the counts are the re-fill's, the same in every pose.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -63,50 +64,71 @@ std::size_t slide_boundary_nodes(const Part& part,
   const std::vector<std::vector<std::uint32_t>> around = quads_at_mesh_nodes(mesh);
   std::size_t slid = 0;
   for (std::uint32_t f = 0; f < mesh.nodes.size(); ++f) {
-    if (!pinned[f] || shared[f] || vertex[f] || around[f].empty()) continue;
-    const PatchId patch = mesh.elements[around[f][0]].patch;
-    if (std::any_of(around[f].begin(), around[f].end(),
-                    [&](std::uint32_t q) { return mesh.elements[q].patch != patch; }))
-      continue;
-    // Its boundary neighbours: across the edges from it that one quad has.
+    if (!pinned[f] || vertex[f] || around[f].empty()) continue;
+    // Its boundary neighbours in each patch it is in: across the edges from it that one quad of
+    // that patch has. A seam node (shared) slides along its seam only where every patch sees
+    // the same two (since session 40; before, nodes of one patch only).
     std::vector<std::uint32_t> ends;
-    for (std::uint32_t q : around[f]) {
-      const auto& x = mesh.elements[q].nodes;
-      std::size_t i = 0;
-      while (x[i] != f) ++i;
-      for (std::uint32_t n : {x[(i + 1) % 4], x[(i + 3) % 4]}) {
-        int uses = 0;
-        for (std::uint32_t r : around[f]) {
-          const auto& y = mesh.elements[r].nodes;
-          if (std::find(y.begin(), y.end(), n) != y.end()) ++uses;
+    bool same_ends = true;
+    std::vector<PatchId> patches;
+    for (std::uint32_t q : around[f])
+      if (std::find(patches.begin(), patches.end(), mesh.elements[q].patch) == patches.end())
+        patches.push_back(mesh.elements[q].patch);
+    for (const PatchId patch : patches) {
+      std::vector<std::uint32_t> here;
+      for (std::uint32_t q : around[f]) {
+        if (mesh.elements[q].patch != patch) continue;
+        const auto& x = mesh.elements[q].nodes;
+        std::size_t i = 0;
+        while (x[i] != f) ++i;
+        for (std::uint32_t n : {x[(i + 1) % 4], x[(i + 3) % 4]}) {
+          int uses = 0;
+          for (std::uint32_t r : around[f]) {
+            if (mesh.elements[r].patch != patch) continue;
+            const auto& y = mesh.elements[r].nodes;
+            if (std::find(y.begin(), y.end(), n) != y.end()) ++uses;
+          }
+          if (uses == 1) here.push_back(n);
         }
-        if (uses == 1) ends.push_back(n);
       }
+      // (the first patch's order, which decides ties between positions; the others must
+      // hold the same two)
+      if (ends.empty()) ends = here;
+      if (here.size() != ends.size() ||
+          !std::is_permutation(here.begin(), here.end(), ends.begin()))
+        same_ends = false;
     }
-    if (ends.size() != 2 || ends[0] == ends[1]) continue;
-    const Frame& frame = part.patches[patch.index()].frame;
+    if (!same_ends || ends.size() != 2 || ends[0] == ends[1]) continue;
+    if (shared[f] && patches.size() < 2) continue;  // (a seam whose other side has no quad here)
+    // Its own patch's frame for its geometry; every quad is scored in its own patch's frame.
+    const Frame& frame = part.patches[patches.front().index()].frame;
     const auto at2 = [&](std::uint32_t v) { return frame.to_2d(mesh.nodes[v]); };
     const Vec2 p1 = at2(ends[0]), pf = at2(f), p2 = at2(ends[1]);
     const double d1 = norm(pf - p1), d2 = norm(p2 - pf);
     // Its boundary: the line through its neighbours, or the part's arc through the three (the
-    // positions it may take come from PartArc::at, as every arc node's does).
+    // positions it may take come from PartArc::at, as every arc node's does). A seam is read
+    // in 3D (its patches' planes differ).
     const Vec2 u = pf - p1, w = p2 - pf;
-    const bool straight = std::abs(cross(u, w)) <= kStraightBoundarySine * norm(u) * norm(w);
+    const Vec3 u3 = mesh.nodes[f] - mesh.nodes[ends[0]], w3 = mesh.nodes[ends[1]] - mesh.nodes[f];
+    const bool straight = patches.size() > 1
+                              ? norm(cross(u3, w3)) <= kStraightBoundarySine * norm(u3) * norm(w3)
+                              : std::abs(cross(u, w)) <= kStraightBoundarySine * norm(u) * norm(w);
     const bool tiny =
         std::min(d1, d2) < (straight ? kSlideTinyLine : kSlideTiny) * std::max(d1, d2);
     if (!tiny && !tapered_too) continue;
     // The worst min(scaled Jacobian, taper) of the node's quads with the node at `at`, their
-    // worst scaled Jacobian (in the patch frame, where every element runs counter-clockwise),
-    // and how many of them have a taper of kSlideTaper or less.
-    const auto score = [&](Vec2 at, double& jacobian, int& tapered_quads) {
+    // worst scaled Jacobian (in each quad's patch frame, where every element runs
+    // counter-clockwise), and how many of them have a taper of kSlideTaper or less.
+    const auto score = [&](Vec3 at, double& jacobian, int& tapered_quads) {
       double worst = std::numeric_limits<double>::infinity();
       jacobian = worst;
       tapered_quads = 0;
       for (std::uint32_t q : around[f]) {
+        const Frame& fq = part.patches[mesh.elements[q].patch.index()].frame;
         std::array<Vec2, 4> p;
         for (std::size_t i = 0; i < 4; ++i) {
           const std::uint32_t v = mesh.elements[q].nodes[i];
-          p[i] = v == f ? at : at2(v);
+          p[i] = fq.to_2d(v == f ? at : mesh.nodes[v]);
         }
         const double j = min_scaled_jacobian(p[0], p[1], p[2], p[3]);
         const double t = quad_taper(p[0], p[1], p[2], p[3]);
@@ -119,7 +141,7 @@ std::size_t slide_boundary_nodes(const Part& part,
     };
     double jacobian_now = 0.0;
     int tapered_now = 0;
-    const double now = score(pf, jacobian_now, tapered_now);
+    const double now = score(mesh.nodes[f], jacobian_now, tapered_now);
     if (!tiny && tapered_now == 0) continue;
     if (straight && dot(u, w) <= 0.0) continue;
     const Vec3 x1 = mesh.nodes[ends[0]], x2 = mesh.nodes[ends[1]];
@@ -155,7 +177,7 @@ std::size_t slide_boundary_nodes(const Part& part,
       const Vec3 at = point(static_cast<double>(k) / (kSlideSteps + 1));
       double jacobian = 0.0;
       int tapered_then = 0;
-      const double s = score(frame.to_2d(at), jacobian, tapered_then);
+      const double s = score(at, jacobian, tapered_then);
       // A short edge's node: no worse a corner, or none below kSlideJacobianFloor. A node
       // slid for a taper: no worse a corner, and fewer tapered quads.
       const bool ok = tiny ? jacobian >= std::min(jacobian_now, kSlideJacobianFloor)

@@ -114,11 +114,12 @@ std::size_t merge_thin_rows(const Part& part, QuadMesh& mesh);
 std::size_t fold_corner_kites(const Part& part, QuadMesh& mesh);
 
 /// Boundary nodes slid apart (docs/mesher.md, "Sliding boundary nodes"), run after the
-/// smoothing (mesh_part then smooths round the nodes moved): a node of one patch's boundary
-/// (no B-Rep vertex, not shared) whose shorter boundary edge is below 0.2 x its longer one on
-/// an arc (0.05 x on a straight edge), or, when `tapered`, a node (on a line or an arc) with a
-/// quad of taper 0.8 or less, moves along its boundary (the line, or the circle through it and
-/// its two boundary neighbours) to the one of 15 even positions between them where the worst
+/// smoothing (mesh_part then smooths round the nodes moved): a node of the mesh's boundary or
+/// of a seam (no B-Rep vertex; on a seam, the same two seam neighbours in every patch at it,
+/// its quads scored each in its own patch's plane) whose shorter boundary edge is below 0.2 x its
+/// longer one on an arc (0.05 x on a straight edge), or, when `tapered`, a node (on a line or an
+/// arc) with a quad of taper 0.8 or less, moves along its boundary (the line, or the circle through
+/// it and its two boundary neighbours) to the one of 15 even positions between them where the worst
 /// min(scaled Jacobian, taper) of its quads is best, when that beats where it is by 0.05 and
 /// leaves their worst scaled Jacobian no lower (or, for a short edge, at least 0.6). Nodes and
 /// quads are not added or removed. Returns how many nodes moved; `moved`, when given,
