@@ -68,6 +68,7 @@ struct QuadStats {
   std::size_t thin_rows = 0;        ///< chains merged by merge_thin_rows
   std::size_t corner_kites = 0;     ///< kites folded by fold_corner_kites
   std::size_t slid_nodes = 0;       ///< boundary nodes moved by slide_boundary_nodes
+  std::size_t late_rounds = 0;      ///< rounds of the late slides and flips kept (mesh_part)
   std::size_t cavity_refills = 0;   ///< cavities round bad quads filled again (refill_cavities)
   std::size_t regrids = 0;          ///< cavities round irregular nodes gridded again (same)
   std::size_t loop_bridges = 0;     ///< loops no rail reached, joined by two bridge rails
