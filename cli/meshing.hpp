@@ -37,9 +37,9 @@ Args meshing_args(const std::vector<std::string>& argv,
   "                   and twice the largest distance of a vertex or arc point from their\n"      \
   "                   centroid); a size above 1/4 of the extent is lowered to 1/4 (with a\n"     \
   "                   note; if no valid mesh comes there, to 0.8, 0.64, 0.5 of that); at\n"      \
-  "                   any other size that gives no valid mesh, 0.9, 0.8, 0.64 of it are\n"       \
-  "                   tried (with a note saying why); a size that would give more than\n"        \
-  "                   5e7 quads (area / W^2) is refused\n"                                       \
+  "                   any other size that gives no valid mesh, 0.9 to 0.4 of it (with\n"         \
+  "                   a note saying why; not where the outline folds back on itself); a\n"       \
+  "                   size that would give more than 5e7 quads (area / W^2) is refused\n"        \
   "  --adaptive       adaptive mode (also the part's mesh.mode \"adaptive\"): tracks as\n"       \
   "                   wide as the medial radius R x dtheta, fine where the part is thin\n"       \
   "  --uniform        uniform mode, whatever the part's mesh.mode says\n"                        \

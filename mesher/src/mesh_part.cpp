@@ -296,11 +296,17 @@ MeshPartResult mesh_part(const Part& part,
     // A uniform size capped at kMaxSizeFraction x the part's extent asks for the coarsest mesh
     // there is; where that fails (a stadium whose faces at that size are bays round a slot's
     // round end: fuzz seed 44044's extreme_094), the sizes kCappedRetry x the cap are tried in
-    // turn; any other uniform size that fails, kFailedRetry x it. The same in every pose.
+    // turn; any other uniform size that fails, kFailedRetry x it, unless the outline folds
+    // back within kSelfContactRel of the part's size (refused below, as it fails at most
+    // sizes: fuzz seed 52052's blob_009 at every share). The same in every pose.
     std::optional<double> asked;
     const double size = uniform_element_size(part, options, &asked);
-    if (!options.adaptive.value_or(part.mesh.mode == MeshMode::Adaptive)) {
-      const std::array<double, 3>& shares = asked ? kCappedRetry : kFailedRetry;
+    // Only on failure: a needle's sides come as close, and such parts mesh.
+    const auto contact = closest_self_contact(part, kSelfContactRel * part.size);
+    if (!options.adaptive.value_or(part.mesh.mode == MeshMode::Adaptive) && (asked || !contact)) {
+      const std::vector<double> shares =
+          asked ? std::vector<double>(kCappedRetry.begin(), kCappedRetry.end())
+                : std::vector<double>(kFailedRetry.begin(), kFailedRetry.end());
       for (const double share : shares) {
         MeshPartOptions smaller = options;
         smaller.size = share * size;
@@ -314,9 +320,8 @@ MeshPartResult mesh_part(const Part& part,
         }
       }
     }
-    // Only on failure: a needle's sides come as close, and such parts mesh.
-    if (const auto c = closest_self_contact(part, kSelfContactRel * part.size)) {
-      throw InputError(describe(part, *c) +
+    if (contact) {
+      throw InputError(describe(part, *contact) +
                        "; an outline folded back that close leaves no room for a valid mesh "
                        "(the mesher: " +
                        e.what() + ")");

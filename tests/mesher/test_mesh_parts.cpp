@@ -1339,7 +1339,7 @@ TEST_CASE("a part that gives no valid mesh at its capped size is meshed at a sma
   }
 }
 
-TEST_CASE("a part that gives no valid mesh at the size asked is meshed at 0.9 of it",
+TEST_CASE("a part that gives no valid mesh at the size asked is meshed at a share of it",
           "[mesh][poses][size]") {
   // comb_spikes_sector.json (split_083 of fuzz seed 48048): a sector of a six-sector part
   // whose outline zigzags within 0.3 of an element, with spikes of 0.05 and 8 degrees. At
@@ -1351,6 +1351,13 @@ TEST_CASE("a part that gives no valid mesh at the size asked is meshed at 0.9 of
     CHECK(!r.size_capped_from);
     CHECK(r.size == Approx(kFailedRetry.front() * *r.size_failed_at).epsilon(1e-12));
     CHECK_THAT(r.failed_because, Catch::Contains("no template gives valid quads"));
+  }
+  // strips_needle_retry.json (split_085 of fuzz seed 56056): four thin strips, a needle along
+  // one side; no valid mesh from 0.5 to 1 of its size, one at 0.4 of it.
+  for (const MeshPartResult& r : check_three_poses(
+           read_brep_json(test_data_dir() + "/parts/strips_needle_retry.json"), 0.0)) {
+    REQUIRE(r.size_failed_at);
+    CHECK(r.size == Approx(kFailedRetry.back() * *r.size_failed_at).epsilon(1e-12));
   }
   // A part that meshes at its size says nothing of the kind.
   const MeshPartResult plain = mesh_part(build_part(read_brep_json(cases_dir() + "/l_shape.json")));
