@@ -867,18 +867,9 @@ class PatchRefill {
       turning += turn[i];
     }
     std::optional<TurnFill> fill = turning == 4 ? lattice_fill(turn) : sided_fill(turn);
-    if (!fill) return std::nullopt;
-    const double more =
-        static_cast<double>(fill->quads.size()) / static_cast<double>(cavity.size());
-    if (more > kRegridCountRatio || more * kRegridCountRatio < 1.0) return std::nullopt;
+    if (!fill || !count_ok(*fill, cavity.size(), kRegridCountRatio)) return std::nullopt;
     const Posed old = posed(cavity, cycle, inner);
-    const std::vector<std::uint32_t> ring = ring_of(cavity, cycle);
-    // From here on the problem in the cavity's frame alone is read (CavityMemo).
-    const std::shared_ptr<const CavityMemo::Answer> answer =
-        memo_.answer("regrid" + problem_key(old.cycle, cycle, old.inner, old.quads, ring, old.cf),
-                     [&] { return regrid_answer(std::move(*fill), old, cycle, ring); });
-    static const bool debug = std::getenv("LAYTRACKS_DEBUG_CAVITY") != nullptr;
-    if (debug && !answer->log.empty()) {  // (none when no quad was tapered)
+    return judged_grid("regrid", std::move(*fill), cavity, cycle, old, false, log, [&] {
       Vec2 mid{0.0, 0.0};
       for (const Vec2& p : old.cycle) mid = mid + (1.0 / static_cast<double>(n)) * p;
       mid = old.cf.to_patch(mid);
@@ -886,8 +877,35 @@ class PatchRefill {
       std::snprintf(line, sizeof line,
                     "regrid: near (%g, %g) %zu quads, %zu inner nodes, turning %d", mid.x, mid.y,
                     cavity.size(), inner.size(), turning);
-      log += line + answer->log;
-    }
+      return std::string(line);
+    });
+  }
+
+  /// Whether a grid fill's quad count is within bounds against the cavity's: at most
+  /// `most_more` times it, at least 1 / kRegridCountRatio.
+  static bool count_ok(const TurnFill& fill, std::size_t cavity_quads, double most_more) {
+    const double more = static_cast<double>(fill.quads.size()) / static_cast<double>(cavity_quads);
+    return more <= most_more && more * kRegridCountRatio >= 1.0;
+  }
+
+  /// A grid fill of the cavity (regrid_plan, whole_plan) judged by regrid_answer in the
+  /// cavity's frame alone, through the memo under `kind`; with LAYTRACKS_DEBUG_CAVITY, the
+  /// line `header` makes, then the answer's, go to `log` (none when no quad was beyond).
+  template <class Header>
+  std::optional<Plan> judged_grid(const char* kind,
+                                  TurnFill fill,
+                                  const std::vector<std::uint32_t>& cavity,
+                                  const std::vector<std::uint32_t>& cycle,
+                                  const Posed& old,
+                                  bool every_measure,
+                                  std::string& log,
+                                  Header header) const {
+    const std::vector<std::uint32_t> ring = ring_of(cavity, cycle);
+    const std::shared_ptr<const CavityMemo::Answer> answer = memo_.answer(
+        kind + problem_key(old.cycle, cycle, old.inner, old.quads, ring, old.cf),
+        [&] { return regrid_answer(std::move(fill), old, cycle, ring, every_measure); });
+    static const bool debug = std::getenv("LAYTRACKS_DEBUG_CAVITY") != nullptr;
+    if (debug && !answer->log.empty()) log += header() + answer->log;
     return plan_of(*answer, cavity, cycle, old.cycle, old.cf);
   }
 
@@ -908,22 +926,13 @@ class PatchRefill {
     std::vector<int> turn(cycle.size(), 0);
     for (std::uint32_t k : *corners) turn[k] = 1;
     std::optional<TurnFill> fill = corners->size() == 4 ? lattice_fill(turn) : sided_fill(turn);
-    if (!fill) return std::nullopt;
-    const double more =
-        static_cast<double>(fill->quads.size()) / static_cast<double>(cavity.size());
-    if (more > kWholeMoreQuads || more * kRegridCountRatio < 1.0) return std::nullopt;
-    const std::vector<std::uint32_t> ring = ring_of(cavity, cycle);
-    const std::shared_ptr<const CavityMemo::Answer> answer =
-        memo_.answer("whole" + problem_key(old.cycle, cycle, old.inner, old.quads, ring, old.cf),
-                     [&] { return regrid_answer(std::move(*fill), old, cycle, ring, true); });
-    static const bool debug = std::getenv("LAYTRACKS_DEBUG_CAVITY") != nullptr;
-    if (debug && !answer->log.empty()) {
+    if (!fill || !count_ok(*fill, cavity.size(), kWholeMoreQuads)) return std::nullopt;
+    return judged_grid("whole", std::move(*fill), cavity, cycle, old, true, log, [&] {
       char line[200];
       std::snprintf(line, sizeof line, "whole patch: %zu quads, %zu corners", cavity.size(),
                     corners->size());
-      log += line + answer->log;
-    }
-    return plan_of(*answer, cavity, cycle, old.cycle, old.cf);
+      return std::string(line);
+    });
   }
 
   /// regrid_plan's fill placed in the cavity and judged against the old quads, both relaxed

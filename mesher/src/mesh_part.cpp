@@ -303,10 +303,8 @@ MeshPartResult mesh_part(const Part& part,
     const double size = uniform_element_size(part, options, &asked);
     // Only on failure: a needle's sides come as close, and such parts mesh.
     const auto contact = closest_self_contact(part, kSelfContactRel * part.size);
-    if (!options.adaptive.value_or(part.mesh.mode == MeshMode::Adaptive) && (asked || !contact)) {
-      const std::vector<double> shares =
-          asked ? std::vector<double>(kCappedRetry.begin(), kCappedRetry.end())
-                : std::vector<double>(kFailedRetry.begin(), kFailedRetry.end());
+    // The first of `shares` x size that meshes, if any.
+    const auto retry = [&](const auto& shares) -> std::optional<MeshPartResult> {
       for (const double share : shares) {
         MeshPartOptions smaller = options;
         smaller.size = share * size;
@@ -319,6 +317,11 @@ MeshPartResult mesh_part(const Part& part,
         } catch (const InternalError&) {
         }
       }
+      return std::nullopt;
+    };
+    if (!options.adaptive.value_or(part.mesh.mode == MeshMode::Adaptive) && (asked || !contact)) {
+      if (std::optional<MeshPartResult> r = asked ? retry(kCappedRetry) : retry(kFailedRetry))
+        return std::move(*r);
     }
     if (contact) {
       throw InputError(describe(part, *contact) +

@@ -62,43 +62,42 @@ std::size_t slide_boundary_nodes(const Part& part,
   const std::vector<bool> shared = shared_nodes(mesh);
   const std::vector<bool> vertex = vertex_nodes(part, mesh);
   const std::vector<std::vector<std::uint32_t>> around = quads_at_mesh_nodes(mesh);
+  // The boundary neighbours of node f in one patch: across the edges from it that one quad
+  // of that patch has (in the order its quads give them).
+  const auto boundary_neighbours = [&](std::uint32_t f, PatchId patch) {
+    const auto in_patch = [&](std::uint32_t q) { return mesh.elements[q].patch == patch; };
+    std::vector<std::uint32_t> found;
+    for (std::uint32_t q : around[f]) {
+      if (!in_patch(q)) continue;
+      const auto& x = mesh.elements[q].nodes;
+      const std::size_t i = static_cast<std::size_t>(std::find(x.begin(), x.end(), f) - x.begin());
+      for (std::uint32_t n : {x[(i + 1) % 4], x[(i + 3) % 4]}) {
+        const auto uses = std::count_if(around[f].begin(), around[f].end(), [&](std::uint32_t r) {
+          const auto& y = mesh.elements[r].nodes;
+          return in_patch(r) && std::find(y.begin(), y.end(), n) != y.end();
+        });
+        if (uses == 1) found.push_back(n);
+      }
+    }
+    return found;
+  };
   std::size_t slid = 0;
   for (std::uint32_t f = 0; f < mesh.nodes.size(); ++f) {
     if (!pinned[f] || vertex[f] || around[f].empty()) continue;
-    // Its boundary neighbours in each patch it is in: across the edges from it that one quad of
-    // that patch has. A seam node (shared) slides along its seam only where every patch sees
-    // the same two (since session 40; before, nodes of one patch only).
-    std::vector<std::uint32_t> ends;
-    bool same_ends = true;
+    // Its boundary neighbours in each patch it is in. A seam node (shared) slides along its
+    // seam only where every patch sees the same two (since session 40; before, nodes of one
+    // patch only); the first patch's order decides ties between positions.
     std::vector<PatchId> patches;
     for (std::uint32_t q : around[f])
       if (std::find(patches.begin(), patches.end(), mesh.elements[q].patch) == patches.end())
         patches.push_back(mesh.elements[q].patch);
-    for (const PatchId patch : patches) {
-      std::vector<std::uint32_t> here;
-      for (std::uint32_t q : around[f]) {
-        if (mesh.elements[q].patch != patch) continue;
-        const auto& x = mesh.elements[q].nodes;
-        std::size_t i = 0;
-        while (x[i] != f) ++i;
-        for (std::uint32_t n : {x[(i + 1) % 4], x[(i + 3) % 4]}) {
-          int uses = 0;
-          for (std::uint32_t r : around[f]) {
-            if (mesh.elements[r].patch != patch) continue;
-            const auto& y = mesh.elements[r].nodes;
-            if (std::find(y.begin(), y.end(), n) != y.end()) ++uses;
-          }
-          if (uses == 1) here.push_back(n);
-        }
-      }
-      // (the first patch's order, which decides ties between positions; the others must
-      // hold the same two)
-      if (ends.empty()) ends = here;
-      if (here.size() != ends.size() ||
-          !std::is_permutation(here.begin(), here.end(), ends.begin()))
-        same_ends = false;
-    }
-    if (!same_ends || ends.size() != 2 || ends[0] == ends[1]) continue;
+    const std::vector<std::uint32_t> ends = boundary_neighbours(f, patches.front());
+    if (ends.size() != 2 || ends[0] == ends[1]) continue;
+    if (std::any_of(patches.begin() + 1, patches.end(), [&](PatchId p) {
+          const std::vector<std::uint32_t> here = boundary_neighbours(f, p);
+          return here.size() != 2 || !std::is_permutation(here.begin(), here.end(), ends.begin());
+        }))
+      continue;
     if (shared[f] && patches.size() < 2) continue;  // (a seam whose other side has no quad here)
     // Its own patch's frame for its geometry; every quad is scored in its own patch's frame.
     const Frame& frame = part.patches[patches.front().index()].frame;
