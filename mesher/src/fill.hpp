@@ -224,6 +224,13 @@ void smooth_nodes(std::vector<Vec2>& pos,
                   const SweepSchedule* schedule = nullptr);
 
 constexpr double kSmoothFloor = 0.2;
+/// smooth_nodes refuses a move that brings the node closer to a neighbour than this x its
+/// shortest edge when the sweeps began. The scaled Jacobian of a corner whose edge has
+/// closed to rounding is rounding itself, of either sign: where the quads round a node were
+/// inverted (a template's first guess), the Laplacian point could land on a neighbour and be
+/// taken in one pose, refused in another (fuzz seed 60060's blob_046, translated: an edge of
+/// a lattice fill's 0.2 closed to 1.8e-15, and the mesh had 3,493 quads, not 3,327).
+constexpr double kSmoothEdgeFloor = 0.01;
 
 /// Moves each interior node by Newton steps on the sum of the condition numbers of the quad
 /// corners it belongs to, edges measured against their lengths before the sweeps (convex in

@@ -340,6 +340,15 @@ void smooth_nodes(std::vector<Vec2>& pos,
   // Every quad's value at the present positions, updated as its nodes move.
   std::vector<double> value(quads.size());
   for (std::uint32_t q = 0; q < quads.size(); ++q) value[q] = jac(q);
+  // How close a node may come to a neighbour (kSmoothEdgeFloor), squared.
+  std::vector<double> floor2(n, 0.0);
+  for (std::uint32_t v = 0; v < n; ++v) {
+    if (fixed[v]) continue;  // never moved: its floor is never read
+    double shortest = std::numeric_limits<double>::infinity();
+    for (std::uint32_t w : nbr[v]) shortest = std::min(shortest, distance(pos[v], pos[w]));
+    if (std::isfinite(shortest))
+      floor2[v] = kSmoothEdgeFloor * shortest * kSmoothEdgeFloor * shortest;
+  }
   sweep_nodes(pos, fixed, around, quads, iterations, schedule, [&](std::uint32_t v) {
     thread_local std::vector<double> t_trial;  // its thread's own: sweep_nodes
     std::vector<double>& trial = t_trial;
@@ -348,6 +357,10 @@ void smooth_nodes(std::vector<Vec2>& pos,
     avg = (1.0 / static_cast<double>(nbr[v].size())) * avg;
     double before = std::numeric_limits<double>::infinity();
     for (std::uint32_t q : around[v]) before = std::min(before, value[q]);
+    for (std::uint32_t w : nbr[v]) {
+      const Vec2 d = avg - pos[w];
+      if (dot(d, d) < floor2[v]) return false;
+    }
     const Vec2 old = pos[v];
     pos[v] = avg;
     // Below min(b, kSmoothFloor) the move is refused (settled(x) <= x + 1e-9 for |x| <= 1):

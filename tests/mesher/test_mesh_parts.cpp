@@ -1365,6 +1365,29 @@ TEST_CASE("a part that gives no valid mesh at the size asked is meshed at a shar
   CHECK(plain.failed_because.empty());
 }
 
+TEST_CASE("no Laplacian move closes an edge, so a translated part meshes the same",
+          "[mesh][poses]") {
+  // blob_laplacian_collapse.json (blob_046 of fuzz seed 60060): 335 vertices, five holes. A
+  // lattice fill's first guess had inverted quads; the Laplacian point of one of its nodes lay
+  // on a neighbour as given, within rounding of it when translated or scaled by 1e-3, and was
+  // taken there (an edge of 0.2 closed to 1.8e-15, whose corners' Jacobians are rounding):
+  // 3,327 quads as given, 3,493 in both other poses. kSmoothEdgeFloor refuses such a move.
+  const RawPart raw = read_brep_json(test_data_dir() + "/parts/blob_laplacian_collapse.json");
+  REQUIRE(raw.mesh.size);
+  std::vector<std::size_t> counts;
+  for (const auto& [t, scale] :
+       {std::pair{Transform{}, 1.0}, std::pair{translation({1000.0, -777.0, 0.0}), 1.0},
+        std::pair{scaling(1e-3), 1e-3}}) {
+    MeshPartOptions o;
+    o.size = *raw.mesh.size * scale;
+    const MeshPartResult r = mesh_part(build_part(transformed(raw, t)), o);
+    CHECK(r.check.valid());
+    counts.push_back(r.mesh.elements.size());
+  }
+  CHECK(counts[1] == counts[0]);
+  CHECK(counts[2] == counts[0]);
+}
+
 TEST_CASE("a star of 18 tips keeps its centre's 20-degree wedges in every pose", "[mesh][poses]") {
   // star18_wedges.json (extreme_011 of fuzz seed 44044, mirrored and scaled as the fuzz run
   // did): 18 tips round one centre, whose wedges are 20 degrees apart, kMinWedgeAngle exactly.
