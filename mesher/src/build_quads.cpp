@@ -43,6 +43,8 @@ constexpr std::uint32_t kNone = 0xffffffffu;
 /// most this below the source's (rounding in the motion; a larger loss means the shapes
 /// differ where the tolerance did not see it, and the face is filled anew).
 constexpr double kSharedFaceSlack = 1e-6;
+/// fill_patches fills the faces of at most this many nodes before the others.
+constexpr std::size_t kSmallFaceFirst = 16;
 /// A boundary piece longer than this x h is split into round(length / h) mesh edges.
 constexpr double kSplitPiece = 2.0;
 /// Lengths are compared with h this much below their exact value (relative), so that a length
@@ -1767,13 +1769,19 @@ class QuadBuilder {
     std::vector<std::size_t> first_pass;
     for (std::size_t j = 0; j < jobs.size(); ++j)
       if (!copy[j]) first_pass.push_back(j);
-    // Largest faces first (their fills take longest), so that the threads end together; each
-    // fill goes to its own place, so the order changes no result.
+    // Faces of at most kSmallFaceFirst nodes first, then the others largest first (their
+    // fills take longest), so that the threads end together; each fill goes to its own place,
+    // so the order changes no result. The faces no template fills are most often small (a
+    // needle's, a notch's), and a size that fails is known before the large faces' fills
+    // (parallel_for starts no face after one that failed), for the retry at a smaller size.
     const auto nodes_of = [&](std::size_t j) {
       return pending[jobs[j].first][jobs[j].second].in.cycle.size();
     };
-    std::stable_sort(first_pass.begin(), first_pass.end(),
-                     [&](std::size_t a, std::size_t b) { return nodes_of(a) > nodes_of(b); });
+    std::stable_sort(first_pass.begin(), first_pass.end(), [&](std::size_t a, std::size_t b) {
+      const bool small_a = nodes_of(a) <= kSmallFaceFirst, small_b = nodes_of(b) <= kSmallFaceFirst;
+      if (small_a != small_b) return small_a;
+      return !small_a && nodes_of(a) > nodes_of(b);
+    });
     fill_jobs(first_pass);
     // A moved copy must score as its source did (up to rounding), else it is filled anew.
     std::vector<std::size_t> second_pass;

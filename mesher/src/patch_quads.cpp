@@ -220,11 +220,15 @@ void parallel_for(std::size_t n, const std::function<void(std::size_t)>& fn) {
   std::atomic<std::size_t> next{0};
   std::exception_ptr error;
   std::size_t error_index = n;
+  std::atomic<std::size_t> failed_from{n};
   std::mutex error_mutex;
   auto work = [&] {
     const bool outer = t_in_parallel_for;
     t_in_parallel_for = true;
     for (std::size_t i = next++; i < n; i = next++) {
+      // After a failure at index e, the items after it need not run: the error thrown is the
+      // least index's, as one thread running them in order would meet first.
+      if (failed_from.load(std::memory_order_relaxed) < i) continue;
       try {
         fn(i);
       } catch (...) {
@@ -232,6 +236,7 @@ void parallel_for(std::size_t n, const std::function<void(std::size_t)>& fn) {
         if (i < error_index) {
           error = std::current_exception();
           error_index = i;
+          failed_from.store(i, std::memory_order_relaxed);
         }
       }
     }

@@ -74,7 +74,9 @@ std::size_t worker_threads();
 /// calling thread when that is one). For work on one index that reads and writes nothing the
 /// work on another index writes (a patch's nodes, a face's quads): the result is the same as
 /// in order. After every thread has ended, the exception of the lowest index that threw is
-/// rethrown (every index runs, so which one is deterministic). Called from within the work of
+/// rethrown, as running them in order on one thread would: an index after one that threw is
+/// not started, and every index before it runs, so which one is deterministic. Called from
+/// within the work of
 /// another parallel_for, it runs on the calling thread (no more threads than cores).
 void parallel_for(std::size_t n, const std::function<void(std::size_t)>& fn);
 
