@@ -207,6 +207,14 @@ void fit_patch(BuildState& s, std::size_t p) {
   check_planarity(s, p, ids, c, n, tol);
   const double twice_area = dot(newell_normal(s, s.chains[p][0], c), n);
   if (std::fabs(twice_area) <= 2.0 * tol * diag) {
+    // A bowtie's two lobes cancel: say where the loop crosses itself, if it does.
+    Frame f;
+    f.origin = c;
+    f.n = n;
+    f.u = first_direction(s, s.chains[p][0], n);
+    f.v = cross(n, f.u);
+    const std::string crossing = loop_conflict(s, p, f);
+    if (!crossing.empty()) fail(crossing);
     fail(patch_name(s, p) + " is degenerate: its outer loop encloses zero area");
   }
   if (twice_area < 0.0) n = -n;

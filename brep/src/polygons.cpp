@@ -268,6 +268,22 @@ void check_arc_circles(const BuildState& s, std::size_t p) {
 
 }  // namespace
 
+std::string loop_conflict(BuildState& s, std::size_t p, const Frame& frame) {
+  Loops2 loops;
+  for (const Chain& c : s.chains[p]) {
+    loops.emplace_back();
+    for (VertexId v : c.vertices)
+      loops.back().push_back(frame.to_2d(s.part.vertices[v.index()].position));
+  }
+  const std::optional<Conflict> first = first_conflict(loops);
+  if (!first) return {};
+  const Frame kept = s.part.patches[p].frame;
+  s.part.patches[p].frame = frame;  // describe() places a crossing by the patch's frame
+  std::string message = describe(s, p, *first);
+  s.part.patches[p].frame = kept;
+  return message;
+}
+
 void check_polygons(const BuildState& s) {
   for (std::size_t p = 0; p < s.loops2d.size(); ++p) {
     for (std::size_t l = 0; l < s.loops2d[p].size(); ++l) check_area(s, p, l);

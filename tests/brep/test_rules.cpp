@@ -230,11 +230,18 @@ TEST_CASE("rule 5: patches are planar and not degenerate", "[brep][rules]") {
     CHECK_THAT(error_of(raw),
                Contains("patch \"stick\" (index 0) is degenerate") && Contains("one line"));
   }
-  SECTION("an outer loop that encloses no area") {
+  SECTION("an outer loop whose two lobes cancel is said to cross itself, not to enclose no area") {
     const RawPart raw =
         make_part({{0, 0, 0}, {2, 2, 0}, {2, 0, 0}, {0, 2, 0}}, {patch("bowtie", {{0, 1, 2, 3}})});
-    CHECK_THAT(error_of(raw),
-               Contains("patch \"bowtie\" (index 0) is degenerate") && Contains("zero area"));
+    CHECK_THAT(
+        error_of(raw),
+        Contains("patch \"bowtie\" (index 0): the outer loop crosses itself near (1.0, 1.0, 0.0)"));
+    // Tilted out of the xy plane, the same.
+    const RawPart tilted =
+        make_part({{0, 0, 0}, {2, 2, 2}, {2, 0, 0}, {0, 2, 2}}, {patch("bowtie", {{0, 1, 2, 3}})});
+    CHECK_THAT(
+        error_of(tilted),
+        Contains("patch \"bowtie\" (index 0): the outer loop crosses itself near (1.0, 1.0, 1.0)"));
   }
 }
 
