@@ -2377,13 +2377,19 @@ namespace {
 /// whose outline has a needle's tip, a boundary corner of a thousandth of a degree on a
 /// fuzzed sawtooth: every quad at that node has that corner, so no template can do better
 /// than its sine), never below kDegenerateJacobian.
-double last_resort_jacobian(const std::vector<Vec2>& cycle) {
-  double sharpest = 1.0;  // the least sine of a corner of at most 90 degrees
+/// The least sine of a corner of the cycle of at most 90 degrees (1 when none is).
+double sharpest_sine(const std::vector<Vec2>& cycle) {
+  double sharpest = 1.0;
   for (std::size_t i = 0; i < cycle.size(); ++i) {
     const double a = interior_angle(cycle, i);
     if (a < 0.5 * kPi) sharpest = std::min(sharpest, std::sin(a));
   }
-  return std::max(kDegenerateJacobian, std::min(kLastResortJacobian, kNeedleShare * sharpest));
+  return sharpest;
+}
+
+double last_resort_jacobian(const std::vector<Vec2>& cycle) {
+  return std::max(kDegenerateJacobian,
+                  std::min(kLastResortJacobian, kNeedleShare * sharpest_sine(cycle)));
 }
 
 }  // namespace
@@ -2410,7 +2416,13 @@ FaceMesh fill_face(const FaceInput& face, const std::string& where, bool needle_
     outline(d, " ");
     std::fprintf(stderr, "%s\n", d.str().c_str());
   }
-  const double bar = needle_tips ? last_resort_jacobian(face.cycle) : kLastResortJacobian;
+  // A face's own corner of sine s leaves no quad better than s there: a tip sharper than
+  // kLastResortJacobian itself is taken at kSharpCornerShare x its sine (a lone needle of a
+  // triangle, 2 long and 1e-5 wide: its tip's face is one quad of 1e-5, refused in every
+  // attempt, and so was the part).
+  const double bar =
+      needle_tips ? last_resort_jacobian(face.cycle)
+                  : std::min(kLastResortJacobian, kSharpCornerShare * sharpest_sine(face.cycle));
   if (best && best->min_jacobian > bar) return *best;
   // The needle-tip attempt's very last resort: cut, with kites (fill_cut). Only where every
   // template failed in the last attempt, so no part that meshed without it changes.

@@ -411,6 +411,10 @@ constexpr double kLastResortJacobian = 1e-5;
 /// 34034 refused, its best 8.8e-8 against a tip's 3.3e-5; 1e-3 one of seed 38038, a pile of
 /// needles folded along one line, its best 2.4e-9 against a tip's 3.4e-6).
 constexpr double kNeedleShare = 1e-4;
+/// fill_face, before the needle-tip attempt: a face with a corner whose sine s is below
+/// kLastResortJacobian / kSharpCornerShare takes its best template above kSharpCornerShare x s
+/// (no quad does better than s at that corner) instead of kLastResortJacobian.
+constexpr double kSharpCornerShare = 0.5;
 constexpr double kDegenerateJacobian = 1e-9;
 
 }  // namespace laytracks::mesher_detail

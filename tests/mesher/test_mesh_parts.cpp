@@ -1365,6 +1365,20 @@ TEST_CASE("a part that gives no valid mesh at the size asked is meshed at a shar
   CHECK(plain.failed_because.empty());
 }
 
+TEST_CASE("a lone needle of a triangle, 1e-5 wide and 2 long, meshes in every pose",
+          "[mesh][poses]") {
+  // Its tip's face is one quad, whose worst corner is the tip's own sine (1e-5): at
+  // kLastResortJacobian exactly, it was refused in every attempt and the part with it (an
+  // internal error). A face's own corner sets its bar (kSharpCornerShare); so does a right
+  // triangle's. At 4e-6 wide the part is refused as a line (brep rule 5).
+  for (const char* file : {"needle_triangle_1e-5.json", "needle_right_triangle_1e-5.json"}) {
+    INFO(file);
+    for (const MeshPartResult& r :
+         check_three_poses(read_brep_json(test_data_dir() + "/parts/" + file), 0.0))
+      CHECK(r.quality.measures[6].worst < 1e-4);  // the tip: no template does better
+  }
+}
+
 TEST_CASE("no Laplacian move closes an edge, so a translated part meshes the same",
           "[mesh][poses]") {
   // blob_laplacian_collapse.json (blob_046 of fuzz seed 60060): 335 vertices, five holes. A
