@@ -319,15 +319,33 @@ MeshPartResult mesh_part(const Part& part,
       }
       return std::nullopt;
     };
+    bool retried = false;
     if (!options.adaptive.value_or(part.mesh.mode == MeshMode::Adaptive) && (asked || !contact)) {
       if (std::optional<MeshPartResult> r = asked ? retry(kCappedRetry) : retry(kFailedRetry))
         return std::move(*r);
+      retried = true;
     }
     if (contact) {
       throw InputError(describe(part, *contact) +
                        "; an outline folded back that close leaves no room for a valid mesh "
                        "(the mesher: " +
                        e.what() + ")");
+    }
+    if (retried) {
+      // Say what was tried, so that the message is not read as one size's failure alone.
+      std::ostringstream tried;
+      tried << e.what() << "; tried again at";
+      const auto list = [&](const auto& shares) {
+        for (std::size_t i = 0; i < shares.size(); ++i)
+          tried << (i == 0 ? " " : i + 1 == shares.size() ? " and " : ", ") << shares[i];
+      };
+      if (asked) {
+        list(kCappedRetry);
+      } else {
+        list(kFailedRetry);
+      }
+      tried << " of the element size " << size << ": no valid mesh either";
+      throw InternalError(tried.str());
     }
     throw;
   }

@@ -1365,6 +1365,23 @@ TEST_CASE("a part that gives no valid mesh at the size asked is meshed at a shar
   CHECK(plain.failed_because.empty());
 }
 
+TEST_CASE("a part that fails at every size of the ladder says which sizes were tried",
+          "[mesh][size]") {
+  // spike_bent_side_unfilled.json (blob_074 of fuzz seed 58058, docs/mesher.md "Known
+  // limits"): a 0.57-degree spike with one side bent leaves a 6-node face no template fills at
+  // every size from 0.2 to 1 of its own. The error names the face and the shares tried.
+  const Part part =
+      build_part(read_brep_json(test_data_dir() + "/parts/spike_bent_side_unfilled.json"));
+  try {
+    mesh_part(part);
+    FAIL("meshed: the known limit is mended, and this test should become one that it meshes");
+  } catch (const InternalError& e) {
+    CHECK_THAT(e.what(), Catch::Contains("no template gives valid quads in face"));
+    CHECK_THAT(e.what(),
+               Catch::Contains("tried again at 0.9, 0.8, 0.64, 0.5 and 0.4 of the element size"));
+  }
+}
+
 TEST_CASE("a lone needle of a triangle, 1e-5 wide and 2 long, meshes in every pose",
           "[mesh][poses]") {
   // Its tip's face is one quad, whose worst corner is the tip's own sine (1e-5): at
