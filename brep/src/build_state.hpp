@@ -69,10 +69,10 @@ void check_loops(BuildState& s);
 void build_arcs(BuildState& s, const BuildOptions& options);
 /// Rules 5-6: planarity, degenerate patches, the frame of every patch, 2D loops.
 void fit_planes(BuildState& s);
-/// Rule 8's message for patch p's loops projected into `frame`, when two of their segments
-/// cross, touch or fold back; empty when none do. For fit_planes: an outer loop of zero net
-/// area is most often a bowtie, and a crossing says more than "zero area".
-std::string loop_conflict(BuildState& s, std::size_t p, const Frame& frame);
+/// Rule 8's message for patch p's loops projected into its frame (set), when two of their
+/// segments cross, touch or fold back; empty when none do. For fit_planes: an outer loop of
+/// zero net area is most often a bowtie, and a crossing says more than "zero area".
+std::string loop_conflict(const BuildState& s, std::size_t p);
 /// Rule 8, exact, in each patch's frame: no zero-area loop, every loop simple, loops neither
 /// touching nor crossing, every hole inside the outer loop and outside the other holes.
 void check_polygons(const BuildState& s);

@@ -206,23 +206,19 @@ void fit_patch(BuildState& s, std::size_t p) {
   blame_off_plane_arc(s, p, ids, tol);
   check_planarity(s, p, ids, c, n, tol);
   const double twice_area = dot(newell_normal(s, s.chains[p][0], c), n);
-  if (std::fabs(twice_area) <= 2.0 * tol * diag) {
-    // A bowtie's two lobes cancel: say where the loop crosses itself, if it does.
-    Frame f;
-    f.origin = c;
-    f.n = n;
-    f.u = first_direction(s, s.chains[p][0], n);
-    f.v = cross(n, f.u);
-    const std::string crossing = loop_conflict(s, p, f);
-    if (!crossing.empty()) fail(crossing);
-    fail(patch_name(s, p) + " is degenerate: its outer loop encloses zero area");
-  }
+  const bool zero_area = std::fabs(twice_area) <= 2.0 * tol * diag;
   if (twice_area < 0.0) n = -n;
   Frame& f = s.part.patches[p].frame;
   f.origin = c;
   f.n = n;
   f.u = first_direction(s, s.chains[p][0], n);
   f.v = cross(n, f.u);
+  if (zero_area) {
+    // A bowtie's two lobes cancel: say where the loop crosses itself, if it does.
+    const std::string crossing = loop_conflict(s, p);
+    if (!crossing.empty()) fail(crossing);
+    fail(patch_name(s, p) + " is degenerate: its outer loop encloses zero area");
+  }
 }
 
 }  // namespace

@@ -268,7 +268,8 @@ void check_arc_circles(const BuildState& s, std::size_t p) {
 
 }  // namespace
 
-std::string loop_conflict(BuildState& s, std::size_t p, const Frame& frame) {
+std::string loop_conflict(const BuildState& s, std::size_t p) {
+  const Frame& frame = s.part.patches[p].frame;
   Loops2 loops;
   for (const Chain& c : s.chains[p]) {
     loops.emplace_back();
@@ -276,12 +277,7 @@ std::string loop_conflict(BuildState& s, std::size_t p, const Frame& frame) {
       loops.back().push_back(frame.to_2d(s.part.vertices[v.index()].position));
   }
   const std::optional<Conflict> first = first_conflict(loops);
-  if (!first) return {};
-  const Frame kept = s.part.patches[p].frame;
-  s.part.patches[p].frame = frame;  // describe() places a crossing by the patch's frame
-  std::string message = describe(s, p, *first);
-  s.part.patches[p].frame = kept;
-  return message;
+  return first ? describe(s, p, *first) : std::string();
 }
 
 void check_polygons(const BuildState& s) {

@@ -333,18 +333,16 @@ MeshPartResult mesh_part(const Part& part,
     }
     if (retried) {
       // Say what was tried, so that the message is not read as one size's failure alone.
-      std::ostringstream tried;
-      tried << e.what() << "; tried again at";
-      const auto list = [&](const auto& shares) {
+      const auto listed = [](const auto& shares) {
+        std::ostringstream o;
         for (std::size_t i = 0; i < shares.size(); ++i)
-          tried << (i == 0 ? " " : i + 1 == shares.size() ? " and " : ", ") << shares[i];
+          o << (i == 0 ? " " : i + 1 == shares.size() ? " and " : ", ") << shares[i];
+        return o.str();
       };
-      if (asked) {
-        list(kCappedRetry);
-      } else {
-        list(kFailedRetry);
-      }
-      tried << " of the element size " << size << ": no valid mesh either";
+      std::ostringstream tried;
+      tried << e.what() << "; tried again at"
+            << (asked ? listed(kCappedRetry) : listed(kFailedRetry)) << " of the element size "
+            << size << ": no valid mesh either";
       throw InternalError(tried.str());
     }
     throw;

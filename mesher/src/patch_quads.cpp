@@ -219,8 +219,7 @@ void parallel_for(std::size_t n, const std::function<void(std::size_t)>& fn) {
   }
   std::atomic<std::size_t> next{0};
   std::exception_ptr error;
-  std::size_t error_index = n;
-  std::atomic<std::size_t> failed_from{n};
+  std::atomic<std::size_t> error_index{n};  // written under error_mutex, read without it
   std::mutex error_mutex;
   auto work = [&] {
     const bool outer = t_in_parallel_for;
@@ -228,15 +227,14 @@ void parallel_for(std::size_t n, const std::function<void(std::size_t)>& fn) {
     for (std::size_t i = next++; i < n; i = next++) {
       // After a failure at index e, the items after it need not run: the error thrown is the
       // least index's, as one thread running them in order would meet first.
-      if (failed_from.load(std::memory_order_relaxed) < i) continue;
+      if (error_index.load(std::memory_order_relaxed) < i) continue;
       try {
         fn(i);
       } catch (...) {
         const std::lock_guard<std::mutex> lock(error_mutex);
         if (i < error_index) {
           error = std::current_exception();
-          error_index = i;
-          failed_from.store(i, std::memory_order_relaxed);
+          error_index.store(i, std::memory_order_relaxed);
         }
       }
     }
