@@ -136,6 +136,7 @@ int run_mesh(const std::vector<std::string>& argv) {
     doc["slit_rails_dropped"] = r.stats.slit_rails;
     doc["sliver_cap_rails_dropped"] = r.stats.sliver_cap_rails;
     doc["needle_tip_faces"] = r.stats.needle_tip_faces;
+    doc["split_pieces"] = r.stats.split_pieces;
     doc["crossing_rails_dropped"] = r.stats.crossing_rails;
     doc["fan_cluster_merges"] = r.stats.fan_clusters;
     doc["smooth_vertex_feet"] = r.stats.smooth_vertex_feet;

@@ -210,7 +210,8 @@ class QuadBuilder {
         h_(options.size),
         law_(options.adaptive),
         sliver_caps_(options.drop_sliver_caps),
-        needle_tips_(options.needle_tips) {
+        needle_tips_(options.needle_tips),
+        split_pieces_(options.split_pieces) {
     if (!(h_ > 0.0) && !law_) throw InternalError("mesher: the element size must be positive");
   }
 
@@ -275,6 +276,11 @@ class QuadBuilder {
       }
     }
     fix_parity();
+    // Split boundary pieces (mesh_part, after an UnfilledFace): two more edges each, which
+    // keeps every face at the piece even, in every patch of its edge.
+    for (const PieceRef& s : split_pieces_)
+      if (s.unit < edges_.size() && s.piece < edges_[s.unit].count.size())
+        edges_[s.unit].count[s.piece] += 2;
     materialise_pieces();
     fill_patches();
     return std::move(result_);
@@ -1705,6 +1711,34 @@ class QuadBuilder {
     }
   }
 
+  /// Face f's boundary pieces, the one of the longest mesh edge first (ties by unit, then
+  /// piece): what mesh_part may split when no template fills the face (UnfilledFace).
+  std::vector<PieceRef> pieces_by_length(const PatchGraph& g, std::size_t f) const {
+    struct Ranked {
+      double edge;
+      PieceRef piece;
+    };
+    std::vector<Ranked> ranked;
+    for (const Half& h : g.faces[f]) {
+      const CEdge& c = g.edges[h.edge];
+      if (c.rail) continue;
+      const double edge = piece_length(c) / edges_[c.edge].count[c.piece];
+      ranked.push_back({edge, PieceRef{c.edge, c.piece}});
+    }
+    std::sort(ranked.begin(), ranked.end(), [](const Ranked& a, const Ranked& b) {
+      if (a.edge != b.edge) return a.edge > b.edge;
+      return std::make_pair(a.piece.unit, a.piece.piece) <
+             std::make_pair(b.piece.unit, b.piece.piece);
+    });
+    std::vector<PieceRef> out;
+    for (const Ranked& r : ranked)
+      if (std::none_of(out.begin(), out.end(), [&](const PieceRef& o) {
+            return o.unit == r.piece.unit && o.piece == r.piece.piece;
+          }))
+        out.push_back(r.piece);
+    return out;
+  }
+
   /// A face's cycle: its positions and sides (FaceInput), and its nodes' mesh ids.
   struct Pending {
     FaceInput in;
@@ -1763,7 +1797,13 @@ class QuadBuilder {
     const auto fill_jobs = [&](const std::vector<std::size_t>& which) {
       parallel_for(which.size(), [&](std::size_t w) {
         const auto [p, f] = jobs[which[w]];
-        filled[p][f] = fill_face(pending[p][f].in, pending[p][f].where, needle_tips_);
+        try {
+          filled[p][f] = fill_face(pending[p][f].in, pending[p][f].where, needle_tips_);
+        } catch (const InternalError& e) {
+          if (!needle_tips_) throw;
+          throw UnfilledFace(e.what(), pending[p][f].where, pending[p][f].in.cycle.size(),
+                             pieces_by_length(patches_[p], f));
+        }
       });
     };
     std::vector<std::size_t> first_pass;
@@ -2019,6 +2059,7 @@ class QuadBuilder {
   const TrackWidthLaw* law_ = nullptr;
   bool sliver_caps_ = false;  ///< QuadOptions::drop_sliver_caps
   bool needle_tips_ = false;  ///< QuadOptions::needle_tips
+  std::vector<PieceRef> split_pieces_;  ///< QuadOptions::split_pieces
   /// Per arc, its discretisation edges: parameters of the edge's a and b along the arc.
   std::vector<std::vector<std::tuple<double, double, EdgeId>>> arc_edges_;
 };

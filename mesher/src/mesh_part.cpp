@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 #include <sstream>
+#include <string>
 
 #include "fill.hpp"
 #include "laytracks/brep/error.hpp"
@@ -64,6 +65,15 @@ constexpr int kLateRounds = 3;
 /// where the short-edge slides alone take it (a 45-degree corner moved in its last bits is
 /// the same corner).
 constexpr double kLateSlideSlack = 1e-3;
+/// Boundary pieces split at most this many times in the third attempt (two edges each): the
+/// needle faces mended take one or two (docs/mesher.md, "Split boundary pieces").
+constexpr int kPieceSplits = 4;
+/// Only for a face of at most this many nodes: the needles' faces (6 to 14 nodes); a larger
+/// face no template fills (comb_spikes_sector's of 58) was not mended by four splits, which
+/// cost 0.9 s before the retry at a smaller size that meshes it. And once per face: a face
+/// that one split did not mend was not mended by three more either (fuzz seed 62062's
+/// extreme_016, 10 to 16 nodes, at four sizes: 11.8 -> 17.8 s before the size that meshes).
+constexpr std::size_t kPieceSplitFaceNodes = 16;
 
 /// The smallest corner scaled Jacobian of the mesh's quads, each in its patch's frame.
 double worst_scaled_jacobian(const Part& part, const QuadMesh& mesh) {
@@ -171,19 +181,39 @@ MeshPartResult mesh_part_unchecked_input(const Part& part,
   // the rails that cross another edge (in a sawtooth's teeth), and lets a face whose own
   // outline has a needle's tip (a corner of a thousandth of a degree) keep a quad as thin as
   // that tip ("Needle tips"). When all fail, the first one's message stands.
+  // In the third attempt, a face that no template fills has its boundary piece of the longest
+  // mesh edge given two more edges (the needle whose one side is a single long edge, the other
+  // bent at reflex vertices that each need an inner edge), up to kPieceSplits times
+  // (docs/mesher.md, "Split boundary pieces").
   QuadResult quads;
   std::exception_ptr first_failure;
-  for (int attempt = 0;; ++attempt) {
+  int splits = 0;
+  std::string split_face;  // the face whose piece was split last
+  for (int attempt = 0;;) {
     qo.drop_sliver_caps = attempt >= 1;
     qo.needle_tips = attempt >= 2;
     try {
       quads = build_quads(part, graph, qo);
       break;
+    } catch (const UnfilledFace& unfilled) {
+      if (!first_failure) first_failure = std::current_exception();
+      if (attempt < 2) {
+        ++attempt;
+      } else if (splits < kPieceSplits && unfilled.nodes <= kPieceSplitFaceNodes &&
+                 unfilled.where != split_face && !unfilled.pieces.empty()) {
+        qo.split_pieces.push_back(unfilled.pieces.front());
+        split_face = unfilled.where;
+        ++splits;
+      } else {
+        std::rethrow_exception(first_failure);
+      }
     } catch (const InternalError&) {
       if (!first_failure) first_failure = std::current_exception();
       if (attempt == 2) std::rethrow_exception(first_failure);
+      ++attempt;
     }
   }
+  quads.stats.split_pieces = static_cast<std::size_t>(splits);
   r.mesh = std::move(quads.mesh);
   r.stats = quads.stats;
   r.stats.edge_flips = flip_edges(part, r.mesh);
@@ -331,22 +361,23 @@ MeshPartResult mesh_part(const Part& part,
                        "(the mesher: " +
                        e.what() + ")");
     }
-    if (retried) {
-      // Say what was tried, so that the message is not read as one size's failure alone.
-      const auto listed = [](const auto& shares) {
-        std::ostringstream o;
-        for (std::size_t i = 0; i < shares.size(); ++i)
-          o << (i == 0 ? " " : i + 1 == shares.size() ? " and " : ", ") << shares[i];
-        return o.str();
-      };
-      std::ostringstream tried;
-      tried << e.what() << "; tried again at"
-            << (asked ? listed(kCappedRetry) : listed(kFailedRetry)) << " of the element size "
-            << size << ": no valid mesh either";
-      throw InternalError(tried.str());
-    }
+    // Say what was tried, so that the message is not read as one size's failure alone.
+    if (retried) throw InternalError(ladder_failure(e.what(), asked.has_value(), size));
     throw;
   }
+}
+
+std::string ladder_failure(const std::string& first, bool capped, double size) {
+  const auto listed = [](const auto& shares) {
+    std::ostringstream o;
+    for (std::size_t i = 0; i < shares.size(); ++i)
+      o << (i == 0 ? " " : i + 1 == shares.size() ? " and " : ", ") << shares[i];
+    return o.str();
+  };
+  std::ostringstream tried;
+  tried << first << "; tried again at" << (capped ? listed(kCappedRetry) : listed(kFailedRetry))
+        << " of the element size " << size << ": no valid mesh either";
+  return tried.str();
 }
 
 }  // namespace laytracks

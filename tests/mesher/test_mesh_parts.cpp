@@ -1352,13 +1352,6 @@ TEST_CASE("a part that gives no valid mesh at the size asked is meshed at a shar
     CHECK(r.size == Approx(kFailedRetry.front() * *r.size_failed_at).epsilon(1e-12));
     CHECK_THAT(r.failed_because, Catch::Contains("no template gives valid quads"));
   }
-  // strips_needle_retry.json (split_085 of fuzz seed 56056): four thin strips, a needle along
-  // one side; no valid mesh from 0.5 to 1 of its size, one at 0.4 of it.
-  for (const MeshPartResult& r : check_three_poses(
-           read_brep_json(test_data_dir() + "/parts/strips_needle_retry.json"), 0.0)) {
-    REQUIRE(r.size_failed_at);
-    CHECK(r.size == Approx(kFailedRetry.back() * *r.size_failed_at).epsilon(1e-12));
-  }
   // A part that meshes at its size says nothing of the kind.
   const MeshPartResult plain = mesh_part(build_part(read_brep_json(cases_dir() + "/l_shape.json")));
   CHECK(!plain.size_failed_at);
@@ -1367,18 +1360,38 @@ TEST_CASE("a part that gives no valid mesh at the size asked is meshed at a shar
 
 TEST_CASE("a part that fails at every size of the ladder says which sizes were tried",
           "[mesh][size]") {
-  // spike_bent_side_unfilled.json (blob_074 of fuzz seed 58058, docs/mesher.md "Known
-  // limits"): a 0.57-degree spike with one side bent leaves a 6-node face no template fills at
-  // every size from 0.2 to 1 of its own. The error names the face and the shares tried.
-  const Part part =
-      build_part(read_brep_json(test_data_dir() + "/parts/spike_bent_side_unfilled.json"));
-  try {
-    mesh_part(part);
-    FAIL("meshed: the known limit is mended, and this test should become one that it meshes");
-  } catch (const InternalError& e) {
-    CHECK_THAT(e.what(), Catch::Contains("no template gives valid quads in face"));
-    CHECK_THAT(e.what(),
-               Catch::Contains("tried again at 0.9, 0.8, 0.64, 0.5 and 0.4 of the element size"));
+  // No part known fails at every share since the boundary pieces are split (below); the
+  // message mesh_part throws then, from the first size's failure.
+  const std::string m =
+      ladder_failure("mesher: no template gives valid quads in face 4", false, 23.5);
+  CHECK(m ==
+        "mesher: no template gives valid quads in face 4; tried again at 0.9, 0.8, 0.64, "
+        "0.5 and 0.4 of the element size 23.5: no valid mesh either");
+  CHECK_THAT(ladder_failure("x", true, 2.0),
+             Catch::EndsWith("tried again at 0.8, 0.64 and 0.5 of the element size 2: no valid "
+                             "mesh either"));
+}
+
+TEST_CASE(
+    "a needle's face that no template fills has its boundary piece split, at the size "
+    "asked, in every pose",
+    "[mesh][poses][size]") {
+  // spike_bent_side.json (blob_074 of fuzz seed 58058): a 0.57-degree spike, one side bent
+  // inward by 0.45 degrees at two vertices, the other one edge, leaves a 6-node face whose
+  // reflex nodes each need an inner edge in a needle 0.02 wide. needles_side_by_side.json
+  // (blob_040 of 68068): two needles 1.2 long, tips 0.04 apart, in one 8-node face.
+  // strips_needle_split.json (split_085 of 56056): four thin strips, a needle along one side.
+  // All three failed at every share of the size ladder but the last one, which meshed at 0.4
+  // of its size; now one split of the face's piece of the longest edge mends each, at the
+  // size asked. Without the splits each fails at that size.
+  for (const char* file :
+       {"spike_bent_side.json", "needles_side_by_side.json", "strips_needle_split.json"}) {
+    INFO(file);
+    const RawPart raw = read_brep_json(test_data_dir() + "/parts/" + file);
+    for (const MeshPartResult& r : check_three_poses(raw, 0.0)) {
+      CHECK(!r.size_failed_at);
+      CHECK(r.stats.split_pieces == 1);
+    }
   }
 }
 

@@ -5,13 +5,25 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
+#include "laytracks/brep/error.hpp"
 #include "laytracks/brep/part.hpp"
 #include "laytracks/cutgraph/cut_graph.hpp"
 #include "laytracks/mesher/quad_mesh.hpp"
 
 namespace laytracks {
+
+/// A piece of a B-Rep edge between two boundary nodes that are ends of rails or vertices, as
+/// build_quads numbers them: its unit (a straight edge, or a whole arc) and its place along it.
+/// Meaningful only to build_quads with the same part, cut graph and options.
+struct PieceRef {
+  std::uint32_t unit = 0;
+  std::uint32_t piece = 0;
+};
 
 struct QuadOptions {
   /// Element size h: the track width the rails were laid with (uniform mode).
@@ -25,6 +37,29 @@ struct QuadOptions {
   /// The third attempt (mesh_part): a face whose outline has a needle's tip takes its best
   /// template down to a share of that tip's sine (mesher_detail::kNeedleShare).
   bool needle_tips = false;
+  /// Boundary pieces given two more edges each (a piece may be listed more than once), after
+  /// the parity is made even (two more keep it): mesh_part's answer to an UnfilledFace in the
+  /// third attempt (docs/mesher.md, "Split boundary pieces").
+  std::vector<PieceRef> split_pieces;
+};
+
+/// build_quads' error when no template fills a face in the third attempt
+/// (QuadOptions::needle_tips): which face (its place in the message), its node count and its
+/// boundary pieces, the one of its longest mesh edge first (ties by unit, then piece), that
+/// mesh_part may split (QuadOptions::split_pieces).
+class UnfilledFace : public InternalError {
+ public:
+  UnfilledFace(const std::string& what,
+               std::string face_where,
+               std::size_t face_nodes,
+               std::vector<PieceRef> by_length)
+      : InternalError(what),
+        where(std::move(face_where)),
+        nodes(face_nodes),
+        pieces(std::move(by_length)) {}
+  std::string where;
+  std::size_t nodes;
+  std::vector<PieceRef> pieces;
 };
 
 /// refill_cavities tries quads below this in uniform mode, below the other in adaptive mode:
@@ -57,6 +92,9 @@ struct QuadStats {
   std::size_t crossing_rails = 0;
   /// faces kept with a corner as thin as a needle's tip of their outline (QuadOptions::needle_tips)
   std::size_t needle_tip_faces = 0;
+  /// boundary pieces given two more edges after a face no template filled
+  /// (QuadOptions::split_pieces)
+  std::size_t split_pieces = 0;
   std::size_t fan_clusters = 0;    ///< MA nodes merged into a deeper one (merge_fan_clusters)
   /// rail feet moved onto a smooth B-Rep vertex within kTinyEndPiece x h of them
   std::size_t smooth_vertex_feet = 0;

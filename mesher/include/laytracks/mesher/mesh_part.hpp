@@ -38,10 +38,14 @@ constexpr std::array<double, 3> kCappedRetry = {0.8, 0.64, 0.5};
 /// fills a face, or the self-check refuses the mesh), these shares of it are tried in turn
 /// (mesh_part), the same in every pose; the size asked for stays in size_failed_at. Fuzz seed
 /// 48048's split_083 (a comb of spikes of 0.05 degrees in one face) fails at its size and
-/// meshes at 0.9 of it; 56056's split_085 (thin strips with a needle along one side) fails at
-/// every size from 0.5 to 1 of its own, and meshes at 0.4. Not tried where the outline folds
-/// back within kSelfContactRel of the part's size (refused as folded, as before).
+/// meshes at 0.9 of it. Not tried where the outline folds back within kSelfContactRel of the
+/// part's size (refused as folded, as before).
 constexpr std::array<double, 5> kFailedRetry = {0.9, 0.8, 0.64, 0.5, 0.4};
+
+/// The error of a part that no size of the ladder meshed: the first size's failure `first`,
+/// then "; tried again at 0.9, 0.8, 0.64, 0.5 and 0.4 of the element size S: no valid mesh
+/// either" (kFailedRetry; kCappedRetry when the size was `capped`).
+std::string ladder_failure(const std::string& first, bool capped, double size);
 
 /// The threads each mesh_part call uses for its passes (face fills, re-fill, smoothing); 0
 /// (the default): as many as the machine has. LAYTRACKS_THREADS in the environment, when set,
