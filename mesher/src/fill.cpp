@@ -850,8 +850,10 @@ void improve_by_flips(std::vector<std::array<std::uint32_t, 3>>& tris, const std
       for (std::uint32_t x : t2)
         if (x != i && x != j) l = x;
       const Vec2 I = coarse[i], J = coarse[j], Kp = coarse[k], L = coarse[l];
-      // Convex: the new diagonal k-l crosses i-j.
-      if (!(cross(J - L, Kp - L) > 0.0 && cross(I - Kp, L - Kp) > 0.0)) continue;
+      // Convex: the new diagonal k-l crosses i-j, by more than kCollinearSine at both ends (a
+      // flat corner there, three nodes of one straight rail, was convex in one pose of a part
+      // and not in another, and the flip made a sliver triangle of them in one pose only).
+      if (!(side_of(L, J, Kp) > 0 && side_of(Kp, I, L) > 0)) continue;
       const double now = std::min(score(i, j, k), score(j, i, l));
       const double then = std::min(score(l, j, k), score(k, i, l));
       if (then > now + kFlipMargin) {
@@ -2407,8 +2409,11 @@ FaceMesh fill_face(const FaceInput& face, const std::string& where, bool needle_
     o << gap << "sides:";
     for (const FaceSide& side : face.sides)
       o << " " << (side.kind == FaceSide::Kind::Rail ? "R" : "B") << side.edges << "@" << side.first;
+    // Every bit of the nodes (tests/data/faces takes them as they are printed here).
+    const std::streamsize was = o.precision(17);
     o << gap << "cycle:";
     for (const Vec2& p : face.cycle) o << " (" << p.x << "," << p.y << ")";
+    o.precision(was);
   };
   if (debug && best) {  // after its templates' lines: which face, what won, and its outline
     std::ostringstream d;

@@ -49,6 +49,24 @@ void check_test_parts(std::initializer_list<std::pair<const char*, double>> case
   }
 }
 
+/// The quad counts of tests/data/parts/`file` meshed at its mesh.size as given, translated by
+/// (1000, -777, 0), and scaled by 1e-3 (its size too), each mesh valid.
+std::vector<std::size_t> counts_moved_and_scaled(const std::string& file) {
+  const RawPart raw = read_brep_json(test_data_dir() + "/parts/" + file);
+  REQUIRE(raw.mesh.size);
+  std::vector<std::size_t> counts;
+  for (const auto& [t, scale] :
+       {std::pair{Transform{}, 1.0}, std::pair{translation({1000.0, -777.0, 0.0}), 1.0},
+        std::pair{scaling(1e-3), 1e-3}}) {
+    MeshPartOptions o;
+    o.size = *raw.mesh.size * scale;
+    const MeshPartResult r = mesh_part(build_part(transformed(raw, t)), o);
+    CHECK(r.check.valid());
+    counts.push_back(r.mesh.elements.size());
+  }
+  return counts;
+}
+
 /// The part at `path` with its element size (mesh.size, which it must have) divided by `factor`.
 RawPart finer(const std::string& path, double factor) {
   RawPart raw = read_brep_json(path);
@@ -1416,18 +1434,19 @@ TEST_CASE("no Laplacian move closes an edge, so a translated part meshes the sam
   // on a neighbour as given, within rounding of it when translated or scaled by 1e-3, and was
   // taken there (an edge of 0.2 closed to 1.8e-15, whose corners' Jacobians are rounding):
   // 3,327 quads as given, 3,493 in both other poses. kSmoothEdgeFloor refuses such a move.
-  const RawPart raw = read_brep_json(test_data_dir() + "/parts/blob_laplacian_collapse.json");
-  REQUIRE(raw.mesh.size);
-  std::vector<std::size_t> counts;
-  for (const auto& [t, scale] :
-       {std::pair{Transform{}, 1.0}, std::pair{translation({1000.0, -777.0, 0.0}), 1.0},
-        std::pair{scaling(1e-3), 1e-3}}) {
-    MeshPartOptions o;
-    o.size = *raw.mesh.size * scale;
-    const MeshPartResult r = mesh_part(build_part(transformed(raw, t)), o);
-    CHECK(r.check.valid());
-    counts.push_back(r.mesh.elements.size());
-  }
+  const std::vector<std::size_t> counts = counts_moved_and_scaled("blob_laplacian_collapse.json");
+  CHECK(counts[1] == counts[0]);
+  CHECK(counts[2] == counts[0]);
+}
+
+TEST_CASE("a lattice fill's flips make no flat triangle, so a translated part meshes the same",
+          "[mesh][poses]") {
+  // lattice_flat_flip.json (arcs_057 of fuzz seed 70070): a face of 48 nodes whose lattice
+  // fill flipped a coarse diagonal into a triangle of three nodes of one straight rail (convex
+  // by rounding) as given, and not translated or scaled by 1e-3: its worst corner -2e-15 as
+  // given, 0.479 in the other poses, and the face took another template: 1,674 quads against
+  // 1,706. The flip's convexity test now asks for more than kCollinearSine (side_of).
+  const std::vector<std::size_t> counts = counts_moved_and_scaled("lattice_flat_flip.json");
   CHECK(counts[1] == counts[0]);
   CHECK(counts[2] == counts[0]);
 }
