@@ -1943,6 +1943,24 @@ double quad_taper(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3) {
   return std::min({a[0], a[1], a[2], a[3]}) / (0.25 * sum);
 }
 
+TaperJacobian quad_taper_jacobian(Vec2 p0, Vec2 p1, Vec2 p2, Vec2 p3) {
+  // e[i] runs from corner i to i + 1; corner i's product is cross(e[i], -e[i - 1]), which is
+  // quad_taper's cross(p[i + 1] - p[i], p[i - 1] - p[i]) and min_scaled_jacobian's numerator.
+  const Vec2 e[4] = {p1 - p0, p2 - p1, p3 - p2, p0 - p3};
+  const double l[4] = {dot(e[0], e[0]), dot(e[1], e[1]), dot(e[2], e[2]), dot(e[3], e[3])};
+  double a[4], sum = 0.0, worst = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 4; ++i) {
+    const int j = (i + 3) % 4;  // the edge into corner i
+    const Vec2 back = -1.0 * e[j];
+    a[i] = cross(e[i], back);
+    sum += a[i];
+    const double l2 = l[i] * l[j];
+    worst = std::min(worst, l2 > 0.0 ? a[i] / std::sqrt(l2) : -1.0);
+  }
+  const double taper = sum > 0.0 ? std::min({a[0], a[1], a[2], a[3]}) / (0.25 * sum) : 0.0;
+  return {taper, worst};
+}
+
 namespace {
 
 /// The mean over a face's quads of min(scaled Jacobian, taper) (quality.md): 1 for squares,
@@ -1955,7 +1973,8 @@ double mean_shape(const FaceMesh& m, const FaceInput& face) {
   double sum = 0.0;
   for (const auto& q : m.quads) {
     const Vec2 a = pos(q[0]), b = pos(q[1]), c = pos(q[2]), d = pos(q[3]);
-    sum += std::min(quad_taper(a, b, c, d), min_scaled_jacobian(a, b, c, d));
+    const TaperJacobian tj = quad_taper_jacobian(a, b, c, d);
+    sum += std::min(tj.taper, tj.jacobian);
   }
   return sum / static_cast<double>(m.quads.size());
 }

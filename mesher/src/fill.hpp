@@ -116,6 +116,14 @@ double min_scaled_jacobian(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
 /// over their mean (0 for a quad of no positive area).
 double quad_taper(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
 
+/// quad_taper and min_scaled_jacobian of one quad at once, from the same corner products
+/// (the same values to the last bit: an edge reversed is the same vector negated, exactly).
+struct TaperJacobian {
+  double taper;
+  double jacobian;
+};
+TaperJacobian quad_taper_jacobian(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
+
 /// True when the open segments pq and rt cross or touch (a shared end point does not count;
 /// collinear ones only when they overlap, within rounding).
 bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t);

@@ -790,12 +790,11 @@ void untaper_nodes(std::vector<Vec2>& pos,
         faults.push_back(f);
       else if (f & ~faults[i])
         return kFails;
-      const double taper = quad_taper(a, b, c, d);
+      const auto [taper, jq] = quad_taper_jacobian(a, b, c, d);
       if (taper <= QualityThresholds::kTaper) ++tapered;
       const double off = 1.0 - taper;
       sum += off * off;
       if (bar && (!(sum < bar->sum) || tapered > bar->tapered)) return kFails;
-      const double jq = min_scaled_jacobian(a, b, c, d);
       worst = std::min(worst, jq);
       jacobians += jq;
       if (bar && (settled(worst) < bar->worst || (bar->positive && !(worst > 0.0)))) return kFails;
