@@ -1439,6 +1439,20 @@ TEST_CASE("no Laplacian move closes an edge, so a translated part meshes the sam
   CHECK(counts[2] == counts[0]);
 }
 
+TEST_CASE("a side of collinear vertices level with a reflex corner has its axis in every pose",
+          "[mesh][poses][medial]") {
+  // steps_collinear_fold.json (bent_023 of fuzz seed 74074): a stepped grid outline folded
+  // once, one side of 23 collinear vertices, one of them level with a step's reflex corner.
+  // The axis vertex of that corner and the two sides at the vertex solves a quadratic whose
+  // leading coefficient is 1 - cos^2 of the sides' turn (2e-16 by rounding): taken as a
+  // quadratic at the part's size 1e-3 only, its second root (1e12 away) became the vertex,
+  // and the axis failed its self-check mirrored and scaled by 1e-3 (quadratic_roots now
+  // decides at the unknown's own length).
+  const std::vector<MeshPartResult> rs =
+      check_three_poses(read_brep_json(test_data_dir() + "/parts/steps_collinear_fold.json"), 0.2);
+  CHECK(rs.front().mesh.elements.size() > 0);
+}
+
 TEST_CASE("a lattice fill's flips make no flat triangle, so a translated part meshes the same",
           "[mesh][poses]") {
   // lattice_flat_flip.json (arcs_057 of fuzz seed 70070): a face of 48 nodes whose lattice
