@@ -8,6 +8,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "fill.hpp"
 #include "laytracks/brep/error.hpp"
@@ -188,7 +189,7 @@ MeshPartResult mesh_part_unchecked_input(const Part& part,
   QuadResult quads;
   std::exception_ptr first_failure;
   int splits = 0;
-  std::string split_face;  // the face whose piece was split last
+  std::vector<std::string> split_faces;  // the faces whose pieces were split
   for (int attempt = 0;;) {
     qo.drop_sliver_caps = attempt >= 1;
     qo.needle_tips = attempt >= 2;
@@ -200,9 +201,11 @@ MeshPartResult mesh_part_unchecked_input(const Part& part,
       if (attempt < 2) {
         ++attempt;
       } else if (splits < kPieceSplits && unfilled.nodes <= kPieceSplitFaceNodes &&
-                 unfilled.where != split_face && !unfilled.pieces.empty()) {
+                 std::find(split_faces.begin(), split_faces.end(), unfilled.where) ==
+                     split_faces.end() &&
+                 !unfilled.pieces.empty()) {
         qo.split_pieces.push_back(unfilled.pieces.front());
-        split_face = unfilled.where;
+        split_faces.push_back(unfilled.where);
         ++splits;
       } else {
         std::rethrow_exception(first_failure);
