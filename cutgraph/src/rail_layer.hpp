@@ -8,6 +8,9 @@
 #include <functional>
 #include <map>
 #include <sstream>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 #include "boundary_index.hpp"
 #include "laytracks/cutgraph/cut_graph.hpp"
@@ -19,6 +22,10 @@ namespace laytracks::cutgraph_detail {
 constexpr double kSamePointRel = 1e-7;
 /// An MA point within this parameter distance of an edge's end is that end's vertex.
 constexpr double kAtVertexT = 1e-9;
+/// The sources' order (RailLayer::sources_in_boundary_order) compares their places along a
+/// loop (segment index + parameter) and their branch points' radii (over the part's size) on
+/// this grid: values within rounding of each other are ties in every pose.
+constexpr double kSourceGrid = 1e-9;
 /// Nodes of the rail network: a G-CUT-VERT index, or this flag with an MA-CUT-VERT index.
 constexpr std::uint32_t kMaNodeFlag = 1u << 31;
 /// A rail chain may cross this many shared edges per patch of the part (plus kMaxHopsExtra)
@@ -67,8 +74,8 @@ class RailLayer {
   void lay_sources() {
     for (std::size_t p = 0; p < axes_.size(); ++p) {
       const PatchId pid(p);
-      for (MaVertexId v : axes_[p].branch_points()) {
-        for (const BoundaryPoint& bp : axes_[p].touching_points(v)) {
+      for (const auto& [v, bp] : sources_in_boundary_order(axes_[p])) {
+        {
           if (is_suppressed(part_.patches[p].frame.to_3d(bp.position))) continue;
           if (join_source(pid, v, bp)) continue;
           const GCutId g = gcut_of(pid, bp, nullptr);
@@ -89,6 +96,39 @@ class RailLayer {
       }
     }
     run();
+  }
+
+  /// A patch's branch points' touching points, in the order of their places along the
+  /// patch's loops (loop, then segment index + parameter), ties by the branch point's radius
+  /// (both on a grid of kSourceGrid), then as the axis lists them. The axis's numbering
+  /// follows the Voronoi diagram's, which differs between poses of a part; the rails are laid
+  /// breadth first from these sources, and where a rail lands beside an earlier one (joined
+  /// sources, leans, loop closures) the order decided which was first (docs/cutgraph.md).
+  std::vector<std::pair<MaVertexId, BoundaryPoint>> sources_in_boundary_order(
+      const MedialAxis& ma) const {
+    struct Source {
+      std::uint32_t loop;
+      long long at;      // segment index + parameter along the loop, on the grid
+      long long radius;  // the branch point's over the part's size, on the grid
+      MaVertexId v;
+      BoundaryPoint bp;
+    };
+    std::vector<Source> sources;
+    for (MaVertexId v : ma.branch_points()) {
+      const double r = ma.vertex(v).radius;
+      for (const BoundaryPoint& bp : ma.touching_points(v)) {
+        const double u = static_cast<double>(bp.site.index) +
+                         (bp.site.kind == BoundarySite::Kind::Corner ? 0.0 : bp.s);
+        sources.push_back({bp.site.loop, std::llround(u / kSourceGrid),
+                           std::llround(r / (kSourceGrid * part_.size)), v, bp});
+      }
+    }
+    std::stable_sort(sources.begin(), sources.end(), [](const Source& a, const Source& b) {
+      return std::tie(a.loop, a.at, a.radius) < std::tie(b.loop, b.at, b.radius);
+    });
+    std::vector<std::pair<MaVertexId, BoundaryPoint>> out;
+    for (const Source& x : sources) out.emplace_back(x.v, x.bp);
+    return out;
   }
 
   /// Source points at these places are not laid: their rails were deleted (narrow corridors).
