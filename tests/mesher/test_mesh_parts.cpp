@@ -647,7 +647,8 @@ TEST_CASE("a face of three corners is three grids round one node", "[mesh][face]
     CHECK(r.stats.by_template[template_index("sided")] > 0);
     // The centre: the mean of the mesh's nodes (the wheel is symmetric), in each pose's frame.
     Vec3 centre{0.0, 0.0, 0.0};
-    for (const Vec3& x : r.mesh.nodes) centre = centre + (1.0 / r.mesh.nodes.size()) * x;
+    for (const Vec3& x : r.mesh.nodes)
+      centre = centre + (1.0 / static_cast<double>(r.mesh.nodes.size())) * x;
     double hub_worst = 1.0;
     std::size_t hub_quads = 0;
     const double scale = r.size / h;  // the pose's scale
