@@ -75,24 +75,22 @@ class RailLayer {
     for (std::size_t p = 0; p < axes_.size(); ++p) {
       const PatchId pid(p);
       for (const auto& [v, bp] : sources_in_boundary_order(axes_[p])) {
-        {
-          if (is_suppressed(part_.patches[p].frame.to_3d(bp.position))) continue;
-          if (join_source(pid, v, bp)) continue;
-          const GCutId g = gcut_of(pid, bp, nullptr);
-          g_.gverts[g.index()].source = true;
-          set_root(g, g);
-          if (const auto corner = corner_in(pid, g)) {
-            // A branch point touching a reflex corner: the rail is one ray of the corner's fan
-            // (Fig. 13), laid here; the corner's other images end there.
-            const LoopPoint at{corner->loop, corner->index, 0.0};
-            const std::optional<CutVertId> known = cut_of(g, pid);
-            const CutVertId c = known ? *known : make_cut(g, pid, at);
-            const MaCutId mc = make_macut(pid, vertex_point(axes_[p], v));
-            g_.segments.push_back({c, mc});
-            links_.push_back({g.value, node_of(mc), pid, 0.0});
-          }
-          queue_.push_back(g);
+        if (is_suppressed(part_.patches[p].frame.to_3d(bp.position))) continue;
+        if (join_source(pid, v, bp)) continue;
+        const GCutId g = gcut_of(pid, bp, nullptr);
+        g_.gverts[g.index()].source = true;
+        set_root(g, g);
+        if (const auto corner = corner_in(pid, g)) {
+          // A branch point touching a reflex corner: the rail is one ray of the corner's fan
+          // (Fig. 13), laid here; the corner's other images end there.
+          const LoopPoint at{corner->loop, corner->index, 0.0};
+          const std::optional<CutVertId> known = cut_of(g, pid);
+          const CutVertId c = known ? *known : make_cut(g, pid, at);
+          const MaCutId mc = make_macut(pid, vertex_point(axes_[p], v));
+          g_.segments.push_back({c, mc});
+          links_.push_back({g.value, node_of(mc), pid, 0.0});
         }
+        queue_.push_back(g);
       }
     }
     run();

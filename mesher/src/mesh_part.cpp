@@ -196,14 +196,11 @@ MeshPartResult mesh_part_unchecked_input(const Part& part,
     try {
       quads = build_quads(part, graph, qo);
       break;
-    } catch (const UnfilledFace& unfilled) {
+    } catch (const UnfilledFace& unfilled) {  // only in the third attempt (needle_tips)
       if (!first_failure) first_failure = std::current_exception();
-      if (attempt < 2) {
-        ++attempt;
-      } else if (splits < kPieceSplits && unfilled.nodes <= kPieceSplitFaceNodes &&
-                 std::find(split_faces.begin(), split_faces.end(), unfilled.where) ==
-                     split_faces.end() &&
-                 !unfilled.pieces.empty()) {
+      if (splits < kPieceSplits && unfilled.nodes <= kPieceSplitFaceNodes &&
+          std::find(split_faces.begin(), split_faces.end(), unfilled.where) == split_faces.end() &&
+          !unfilled.pieces.empty()) {
         qo.split_pieces.push_back(unfilled.pieces.front());
         split_faces.push_back(unfilled.where);
         ++splits;
