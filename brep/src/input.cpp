@@ -155,8 +155,15 @@ void measure_part(BuildState& s) {
     if (s.used[i]) radius = std::max(radius, distance(s.raw.vertices[i], centroid));
   }
   s.part.size = 2.0 * radius;
-  if (!(s.part.size > 0.0))
-    fail("the part has zero size: all its vertices are at " + point(box.lo));
+  if (!(s.part.size > 0.0)) {
+    if (box.lo.x == box.hi.x && box.lo.y == box.hi.y && box.lo.z == box.hi.z)
+      fail("the part has zero size: all its vertices are at " + point(box.lo));
+    // Distinct vertices whose distances underflow (a part drawn in units of 1e-300).
+    fail("the part is too small to measure: its vertices lie in a box of " +
+         num(box.hi.x - box.lo.x) + " x " + num(box.hi.y - box.lo.y) + " x " +
+         num(box.hi.z - box.lo.z) + " " + s.raw.units +
+         ", whose distances underflow double precision");
+  }
   if (s.part.size < Tolerances::kMinRelativeSize * largest) {
     fail("the part is too small for where it is: its size " + len(s, s.part.size) + " is below " +
          num(Tolerances::kMinRelativeSize) + " x its largest coordinate " + len(s, largest) +

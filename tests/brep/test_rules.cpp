@@ -107,6 +107,12 @@ TEST_CASE("rule 2: the part's size", "[brep][rules]") {
     const RawPart raw = make_part({{1, 2, 3}, {1, 2, 3}, {1, 2, 3}}, {patch("dot", {{0, 1, 2}})});
     CHECK_THAT(error_of(raw), Contains("zero size") && Contains("(1.0, 2.0, 3.0)"));
   }
+  SECTION("distinct vertices whose distances underflow") {
+    const RawPart raw =
+        make_part({{0, 0, 0}, {1e-300, 0, 0}, {0, 1e-300, 0}}, {patch("speck", {{0, 1, 2}})});
+    CHECK_THAT(error_of(raw), Contains("too small to measure") &&
+                                  Contains("1e-300 x 1e-300 x 0.0 mm") && !Contains("zero size"));
+  }
   SECTION("too small for its distance from the origin") {
     const RawPart raw =
         make_part({{1e6, 0, 0}, {1e6 + 1e-4, 0, 0}, {1e6, 1e-4, 0}}, {patch("speck", {{0, 1, 2}})});
