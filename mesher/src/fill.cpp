@@ -2316,7 +2316,15 @@ struct BestFill {
     static const bool debug = std::getenv("LAYTRACKS_DEBUG_FACE") != nullptr;
     if (debug && m) std::fprintf(stderr, "  [%d] %s J=%g\n", depth, to_string(m->kind), m->min_jacobian);
     if (!m) return best && best->min_jacobian >= kAcceptJacobian;
-    if (!best || quantised(m->min_jacobian) > quantised(best->min_jacobian)) {
+    // Within a step, quads no better than kLastResortJacobian (a corner of 0: three nodes on a
+    // line, or +-1e-17 by rounding) lose to quads above it: 0 and 0.0007 share the step
+    // [0, 0.05), and the first found stayed (fuzz seed 80080's split_056: a comb of spikes
+    // whose split gave 0 and whose pairs 6.9e-4, refused at every size). The bar, not 0,
+    // divides them: a flat corner is 0 in one pose and 1e-17 in another.
+    const bool same_step = best && quantised(m->min_jacobian) == quantised(best->min_jacobian);
+    if (!best || quantised(m->min_jacobian) > quantised(best->min_jacobian) ||
+        (same_step && !(best->min_jacobian > kLastResortJacobian) &&
+         m->min_jacobian > kLastResortJacobian)) {
       best = std::move(m);
       best_shape = -1.0;
     } else if (quantised(m->min_jacobian) == quantised(best->min_jacobian) &&
@@ -2415,6 +2423,8 @@ double last_resort_jacobian(const std::vector<Vec2>& cycle) {
 
 }  // namespace
 
+std::optional<FaceMesh> fill_kites(const FaceInput& face) { return fill_cut(face, true); }
+
 FaceMesh fill_face(const FaceInput& face, const std::string& where, bool needle_tips) {
   const std::size_t n = face.cycle.size();
   if (n < 4 || n % 2 != 0) {
@@ -2451,7 +2461,7 @@ FaceMesh fill_face(const FaceInput& face, const std::string& where, bool needle_
   // The needle-tip attempt's very last resort: cut, with kites (fill_cut). Only where every
   // template failed in the last attempt, so no part that meshed without it changes.
   if (needle_tips) {
-    std::optional<FaceMesh> kites = fill_cut(face, true);
+    std::optional<FaceMesh> kites = fill_kites(face);
     if (debug && kites)
       std::fprintf(stderr, "face: %s kites %g\n", where.c_str(), kites->min_jacobian);
     if (kites && kites->min_jacobian > bar) return *kites;

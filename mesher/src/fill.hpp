@@ -141,6 +141,12 @@ FaceMesh fill_face(const FaceInput& face, const std::string& where, bool needle_
 /// valid quads.
 std::optional<FaceMesh> fill_cavity(const FaceInput& face);
 
+/// The needle-tip attempt's last resort (fill_face with needle_tips, where no template's
+/// quads are above the face's bar): cut by chords as the cut template is, and where a piece
+/// is a needle's tip, the corner cut off as a kite through one new node (FillKind::Kites).
+/// Nothing when it gives no quads.
+std::optional<FaceMesh> fill_kites(const FaceInput& face);
+
 /// Faces of at least this many nodes are looked for among the faces filled before them
 /// (face_motion): filling one takes 10-70 ms when it goes to the unstructured templates, and
 /// parts repeat their features (a row of bosses, a symmetric cover: cover_bosses has four

@@ -422,18 +422,20 @@ TEST_CASE("mesh lowers a size beyond a quarter of the part's extent, says so, an
 }
 
 TEST_CASE("mesh says when no valid mesh came at the size asked, and which it used", "[cli][mesh]") {
-  // comb_spikes_sector.json: at its mesh.size no template fills one face; at 0.9 of it the
-  // part meshes (test_mesh_parts has the poses).
+  // hugesize_stadium.json at --size 30: no template fills one face; at 0.9 of it the part
+  // meshes (test_mesh_parts has the poses).
   const fs::path d = fresh_dir("mesh-retry");
-  const std::string part = q(test_data_dir() + "/parts/comb_spikes_sector.json");
-  const Run r = run("mesh " + part + " -o " + q(d / "m.msh") + " --report " + q(d / "r.json"));
+  const std::string part = q(test_data_dir() + "/parts/hugesize_stadium.json");
+  const Run r =
+      run("mesh " + part + " --size 30 -o " + q(d / "m.msh") + " --report " + q(d / "r.json"));
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK_THAT(r.err, Catch::Contains("no valid mesh came (mesher: no template gives valid quads"));
   const auto doc = nlohmann::json::parse(slurp(d / "r.json"));
   CHECK(doc["valid"].get<bool>());
   CHECK(doc["size"].get<double>() == Approx(0.9 * doc["size_asked"].get<double>()));
-  CHECK_THAT(doc["size_failed"].get<std::string>(), Catch::Contains("face 33 of patch"));
+  CHECK(doc["size_asked"].get<double>() == 30.0);
+  CHECK_THAT(doc["size_failed"].get<std::string>(), Catch::Contains("face 6 of patch"));
 }
 
 TEST_CASE("mesh --adaptive: the mode from the part or the command line, its report, and its "

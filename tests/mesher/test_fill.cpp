@@ -840,6 +840,38 @@ TEST_CASE("a large face whose sharp corner bounds every template takes the bette
   CHECK(100 * tapered_quads(f, m) <= 55 * m.quads.size());
 }
 
+TEST_CASE("a face whose first template has a corner of exactly 0 takes a valid one in its step",
+          "[fill]") {
+  // Face 11 of fuzz seed 80080's split_056: a comb of spikes 0.006 wide (the element is 1.5).
+  // Its split has a worst corner of exactly 0 (three nodes on a line), its pairs 6.9e-4; both
+  // lie in the step [0, 0.05) of kChoiceStep, where the first found stayed, and the face (the
+  // part, at every size of the ladder) was refused. Within a step a valid fill now beats one
+  // with a corner of 0.
+  const FaceInput f = saved_face("spike_comb_zero.txt");
+  REQUIRE(f.cycle.size() == 12);
+  const FaceMesh m = fill_face(f, "the comb");
+  INFO(to_string(m.kind) << " " << m.min_jacobian);
+  CHECK(m.min_jacobian > 0.0);
+  check_fill(f, m);
+}
+
+TEST_CASE("the needle-tip attempt's last resort cuts a needle's corner off as a kite", "[fill]") {
+  // Face 54 of needle_kites_thin.json's third attempt until session 42 (a needle of 0.25
+  // degrees, a reflex node of 181.5 degrees beside a flat one): the cut template's chords
+  // with a needle's corner cut off as a kite through one new node (fill_kites): valid quads,
+  // worst corner 0.0043. fill_face reaches it only where no template's quads pass the face's
+  // bar; on this face the pairs do since session 43 (7.8e-4).
+  const FaceInput f = saved_face("needle_kites_thin.txt");
+  REQUIRE(f.cycle.size() == 6);
+  const std::optional<FaceMesh> m = fill_kites(f);
+  REQUIRE(m);
+  CHECK(m->kind == FillKind::Kites);
+  CHECK(m->min_jacobian > 0.004);
+  check_fill(f, *m);
+  const FaceMesh best = fill_face(f, "the thin needle", true);
+  CHECK(best.min_jacobian > 7e-4);
+}
+
 TEST_CASE("parallel_for throws the error of the first failing index and starts nothing after it",
           "[parallel]") {
   // 2,000 items of 0.2 ms, item 3 and item 1,500 throw: the error is item 3's (as in order),
