@@ -74,7 +74,9 @@ class RailLayer {
   void lay_sources() {
     for (std::size_t p = 0; p < axes_.size(); ++p) {
       const PatchId pid(p);
-      for (const auto& [v, bp] : sources_in_boundary_order(axes_[p])) {
+      for (const Source& source : sources_in_boundary_order(axes_[p])) {
+        const MaVertexId v = source.v;
+        const BoundaryPoint& bp = source.bp;
         if (is_suppressed(part_.patches[p].frame.to_3d(bp.position))) continue;
         if (join_source(pid, v, bp)) continue;
         const GCutId g = gcut_of(pid, bp, nullptr);
@@ -102,15 +104,14 @@ class RailLayer {
   /// follows the Voronoi diagram's, which differs between poses of a part; the rails are laid
   /// breadth first from these sources, and where a rail lands beside an earlier one (joined
   /// sources, leans, loop closures) the order decided which was first (docs/cutgraph.md).
-  std::vector<std::pair<MaVertexId, BoundaryPoint>> sources_in_boundary_order(
-      const MedialAxis& ma) const {
-    struct Source {
-      std::uint32_t loop;
-      long long at;      // segment index + parameter along the loop, on the grid
-      long long radius;  // the branch point's over the part's size, on the grid
-      MaVertexId v;
-      BoundaryPoint bp;
-    };
+  struct Source {
+    std::uint32_t loop;
+    long long at;      // segment index + parameter along the loop, on the grid
+    long long radius;  // the branch point's over the part's size, on the grid
+    MaVertexId v;
+    BoundaryPoint bp;
+  };
+  std::vector<Source> sources_in_boundary_order(const MedialAxis& ma) const {
     std::vector<Source> sources;
     for (MaVertexId v : ma.branch_points()) {
       const double r = ma.vertex(v).radius;
@@ -124,9 +125,7 @@ class RailLayer {
     std::stable_sort(sources.begin(), sources.end(), [](const Source& a, const Source& b) {
       return std::tie(a.loop, a.at, a.radius) < std::tie(b.loop, b.at, b.radius);
     });
-    std::vector<std::pair<MaVertexId, BoundaryPoint>> out;
-    for (const Source& x : sources) out.emplace_back(x.v, x.bp);
-    return out;
+    return sources;
   }
 
   /// Source points at these places are not laid: their rails were deleted (narrow corridors).

@@ -2316,25 +2316,28 @@ struct BestFill {
     static const bool debug = std::getenv("LAYTRACKS_DEBUG_FACE") != nullptr;
     if (debug && m) std::fprintf(stderr, "  [%d] %s J=%g\n", depth, to_string(m->kind), m->min_jacobian);
     if (!m) return best && best->min_jacobian >= kAcceptJacobian;
-    // Within a step, quads no better than kLastResortJacobian (a corner of 0: three nodes on a
-    // line, or +-1e-17 by rounding) lose to quads above it: 0 and 0.0007 share the step
-    // [0, 0.05), and the first found stayed (fuzz seed 80080's split_056: a comb of spikes
-    // whose split gave 0 and whose pairs 6.9e-4, refused at every size). The bar, not 0,
-    // divides them: a flat corner is 0 in one pose and 1e-17 in another.
-    const bool same_step = best && quantised(m->min_jacobian) == quantised(best->min_jacobian);
-    if (!best || quantised(m->min_jacobian) > quantised(best->min_jacobian) ||
-        (same_step && !(best->min_jacobian > kLastResortJacobian) &&
-         m->min_jacobian > kLastResortJacobian)) {
+    const auto take = [&](double shape) {
       best = std::move(m);
-      best_shape = -1.0;
-    } else if (quantised(m->min_jacobian) == quantised(best->min_jacobian) &&
-               best->min_jacobian < kAcceptJacobian && m->min_jacobian > kMinValidJacobian &&
-               face_->cycle.size() > kLargeFace) {
-      if (best_shape < 0.0) best_shape = whole_steps(mean_shape(*best, *face_), kShapeStep);
-      const double shape = whole_steps(mean_shape(*m, *face_), kShapeStep);
-      if (shape > best_shape) {
-        best = std::move(m);
-        best_shape = shape;
+      best_shape = shape;
+    };
+    if (!best) {
+      take(-1.0);
+    } else {
+      const double qm = quantised(m->min_jacobian), qb = quantised(best->min_jacobian);
+      // Within a step, quads no better than kLastResortJacobian (a corner of 0: three nodes on
+      // a line, or +-1e-17 by rounding) lose to quads above it: 0 and 0.0007 share the step
+      // [0, 0.05), and the first found stayed (fuzz seed 80080's split_056: a comb of spikes
+      // whose split gave 0 and whose pairs 6.9e-4, refused at every size). The bar, not 0,
+      // divides them: a flat corner is 0 in one pose and 1e-17 in another.
+      const bool passes_bar =
+          m->min_jacobian > kLastResortJacobian && !(best->min_jacobian > kLastResortJacobian);
+      if (qm > qb || (qm == qb && passes_bar)) {
+        take(-1.0);
+      } else if (qm == qb && best->min_jacobian < kAcceptJacobian &&
+                 m->min_jacobian > kMinValidJacobian && face_->cycle.size() > kLargeFace) {
+        if (best_shape < 0.0) best_shape = whole_steps(mean_shape(*best, *face_), kShapeStep);
+        const double shape = whole_steps(mean_shape(*m, *face_), kShapeStep);
+        if (shape > best_shape) take(shape);
       }
     }
     return best && best->min_jacobian >= kAcceptJacobian;
