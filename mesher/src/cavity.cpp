@@ -80,6 +80,8 @@ constexpr int kRegridSweeps = 100;
 /// the uniform size: its centre's pole of 40 small quads became 20 large ones, the quads at
 /// the centre twice as large as the rest).
 constexpr double kRegridCountRatio = 1.5;
+/// A round cavity's O-grids (round_plan): the layers nearest its count and this many - 1 more.
+constexpr std::size_t kRoundLayers = 2;
 /// Whole patches (whole_plan): a patch of at most kWholeQuads quads whose outline has three,
 /// four or five corners and no hole is tried as one cavity first.
 constexpr std::size_t kWholeQuads = 4000;
@@ -138,7 +140,8 @@ class CavityMemo {
     std::vector<Vec2> pos;
     std::vector<Quad> quads;
     double worst = 0.0;
-    std::string log;  ///< the LAYTRACKS_DEBUG_CAVITY line
+    std::size_t gain = 0;  ///< a kept regrid's tapered quads fewer than before
+    std::string log;       ///< the LAYTRACKS_DEBUG_CAVITY line
 
     /// Kept: the first `cycle` + interior positions of `now` (the fill relaxed with the ring)
     /// and the fill's quads.
@@ -434,6 +437,8 @@ class PatchRefill {
     std::size_t interior = 0;       ///< the new inner nodes (local ids n.. of `now`)
     std::size_t fresh = 0;          ///< the new quads (the first of `now.quads`)
     Local now;                      ///< the new quads relaxed with the ring
+    std::size_t gain = 0;           ///< a regrid's: its tapered quads fewer than before
+    bool round = false;             ///< a regrid's O-grid (its cavity turns by 0)
   };
 
   /// One attempt round quad q, made on the mesh as it is (nothing changed): the first cavity
@@ -499,16 +504,22 @@ class PatchRefill {
     std::vector<std::uint32_t> region = around_[v];
     std::sort(region.begin(), region.end());
     std::vector<std::uint32_t> looked;
-    for (int ring = 0; ring < kRegridRings && !t.plan; ++ring) {
+    // The first cavity whose grid is kept; after an O-grid's (round_plan), the larger ones too,
+    // while they are kept, and of those the one with the fewest tapered quads (the first on
+    // ties): rings of trapezoids round a pole go out further than its first ring.
+    const auto take = [&](std::optional<Plan> plan) {
+      if (plan && (!t.plan || plan->gain > t.plan->gain)) t.plan = std::move(plan);
+      return t.plan.has_value();
+    };
+    for (int ring = 0; ring < kRegridRings && (!t.plan || t.plan->round); ++ring) {
       if (ring > 0) region = quads_at_nodes_of(region);
       if (region.size() > kRegridQuads) break;
       looked = region;
-      t.plan = regrid_plan(region, t.log);
-      if (t.plan) continue;
+      if (take(regrid_plan(region, t.log)) && !t.plan->round) continue;
       std::vector<std::uint32_t> closed = closed_region(region);
       if (closed.size() == region.size() || closed.size() > kRegridQuads) continue;
       looked = closed;
-      t.plan = regrid_plan(closed, t.log);
+      take(regrid_plan(closed, t.log));
     }
     t.reads = nodes_of(quads_at_nodes_of(looked));
     if (!std::binary_search(t.reads.begin(), t.reads.end(), v))
@@ -740,7 +751,9 @@ class PatchRefill {
     now.pos = answer.pos;
     now.quads = answer.quads;
     now.worst = answer.worst;
-    return Plan{cavity, cycle, cycle_local, cf, interior, answer.quads.size(), std::move(now)};
+    Plan plan{cavity, cycle, cycle_local, cf, interior, answer.quads.size(), std::move(now)};
+    plan.gain = answer.gain;
+    return plan;
   }
 
   /// The bytes of a cavity's problem in its frame: the positions of its cycle, inner and
@@ -828,7 +841,8 @@ class PatchRefill {
       }
     const bool lattice = turning == 4 && irregular >= 1;
     const bool sided = (turning == 3 || turning == 5) && irregular >= 2 && reflex == 0;
-    if (!lattice && !sided) return false;
+    const bool round = turning == 0 && irregular >= 1 && reflex == 0;
+    if (!lattice && !sided && !round) return false;
     // A cavity with no tapered quad has nothing to gain (and most have none). Settled: a
     // trapezoid of sides 2 and 3 (rows of a triangle's grid) has a taper of 0.8 exactly, and
     // the pose's rounding must not decide.
@@ -866,10 +880,8 @@ class PatchRefill {
       turn[i] = 2 - static_cast<int>(count);
       turning += turn[i];
     }
-    std::optional<TurnFill> fill = turning == 4 ? lattice_fill(turn) : sided_fill(turn);
-    if (!fill || !count_ok(*fill, cavity.size(), kRegridCountRatio)) return std::nullopt;
     const Posed old = posed(cavity, cycle, inner);
-    return judged_grid("regrid", std::move(*fill), cavity, cycle, old, false, log, [&] {
+    const auto header = [&] {
       Vec2 mid{0.0, 0.0};
       for (const Vec2& p : old.cycle) mid = mid + (1.0 / static_cast<double>(n)) * p;
       mid = old.cf.to_patch(mid);
@@ -878,7 +890,43 @@ class PatchRefill {
                     "regrid: near (%g, %g) %zu quads, %zu inner nodes, turning %d", mid.x, mid.y,
                     cavity.size(), inner.size(), turning);
       return std::string(line);
-    });
+    };
+    if (turning == 0) return round_plan(cavity, cycle, turn, old, log, header);
+    std::optional<TurnFill> fill = turning == 4 ? lattice_fill(turn) : sided_fill(turn);
+    if (!fill || !count_ok(*fill, cavity.size(), kRegridCountRatio)) return std::nullopt;
+    return judged_grid("regrid", std::move(*fill), cavity, cycle, old, false, log, header);
+  }
+
+  /// A round cavity (every cycle node in two of its quads; regrid_plan): O-grids of
+  /// kRoundLayers[k] + the layers that best match its count, each with its core's first
+  /// corner under the cycle's first node or half a core side on (kRoundStarts); of those
+  /// kept, the one with the fewest tapered quads (the first on ties).
+  template <class Header>
+  std::optional<Plan> round_plan(const std::vector<std::uint32_t>& cavity,
+                                 const std::vector<std::uint32_t>& cycle,
+                                 const std::vector<int>& turn,
+                                 const Posed& old,
+                                 std::string& log,
+                                 Header header) const {
+    const std::size_t n = cycle.size();
+    const std::size_t core = (n / 4) * (n / 2 - n / 4);
+    // The layers whose count is nearest the cavity's (at least one).
+    const std::size_t layers =
+        cavity.size() > core ? std::max<std::size_t>(1, (cavity.size() - core + n / 2) / n) : 1;
+    std::optional<Plan> best;
+    for (std::size_t more = 0; more < kRoundLayers; ++more)
+      for (std::size_t start : {std::size_t{0}, n / 8}) {
+        std::optional<TurnFill> fill = ogrid_fill(turn, static_cast<std::uint32_t>(layers + more),
+                                                  static_cast<std::uint32_t>(start));
+        if (!fill || !count_ok(*fill, cavity.size(), kRegridCountRatio)) continue;
+        const std::string kind =
+            "ogrid " + std::to_string(layers + more) + " " + std::to_string(start) + " ";
+        std::optional<Plan> plan =
+            judged_grid(kind, std::move(*fill), cavity, cycle, old, false, log, header);
+        if (plan && (!best || plan->gain > best->gain)) best = std::move(plan);
+      }
+    if (best) best->round = true;
+    return best;
   }
 
   /// Whether a grid fill's quad count is within bounds against the cavity's: at most
@@ -892,7 +940,7 @@ class PatchRefill {
   /// cavity's frame alone, through the memo under `kind`; with LAYTRACKS_DEBUG_CAVITY, the
   /// line `header` makes, then the answer's, go to `log` (none when no quad was beyond).
   template <class Header>
-  std::optional<Plan> judged_grid(const char* kind,
+  std::optional<Plan> judged_grid(const std::string& kind,
                                   TurnFill fill,
                                   const std::vector<std::uint32_t>& cavity,
                                   const std::vector<std::uint32_t>& cycle,
@@ -978,7 +1026,10 @@ class PatchRefill {
                     answer->keep ? " kept" : "");
       answer->log = line;
     }
-    if (answer->keep) answer->keep_fill(now.pos, now.worst, n, fill.interior.size(), fill.quads);
+    if (answer->keep) {
+      answer->keep_fill(now.pos, now.worst, n, fill.interior.size(), fill.quads);
+      answer->gain = t_was - t_now;
+    }
     return answer;
   }
 

@@ -154,6 +154,46 @@ std::optional<TurnFill> sided_fill(const std::vector<int>& turn) {
   return f;
 }
 
+std::optional<TurnFill> ogrid_fill(const std::vector<int>& turn,
+                                   std::uint32_t layers,
+                                   std::uint32_t start) {
+  const auto n = static_cast<std::uint32_t>(turn.size());
+  if (n < 8 || n % 2 != 0 || layers < 1) return std::nullopt;
+  if (std::any_of(turn.begin(), turn.end(), [](int t) { return t != 0; })) return std::nullopt;
+  const std::uint32_t a = n / 4, b = n / 2 - a;
+  TurnFill f;
+  const auto fresh = [&] {
+    f.interior.push_back({0.0, 0.0});
+    return static_cast<std::uint32_t>(n + f.interior.size() - 1);
+  };
+  // Ring l (0 the cycle, `layers` the core's boundary), node i (from `start`).
+  std::vector<std::uint32_t> ring(static_cast<std::size_t>(layers + 1) * n);
+  const auto r = [&](std::uint32_t l, std::uint32_t i) -> std::uint32_t& {
+    return ring[static_cast<std::size_t>(l) * n + i % n];
+  };
+  for (std::uint32_t i = 0; i < n; ++i) r(0, i) = (start + i) % n;
+  for (std::uint32_t l = 1; l <= layers; ++l)
+    for (std::uint32_t i = 0; i < n; ++i) r(l, i) = fresh();
+  for (std::uint32_t l = 0; l < layers; ++l)
+    for (std::uint32_t i = 0; i < n; ++i)
+      f.quads.push_back({r(l, i), r(l, i + 1), r(l + 1, i + 1), r(l + 1, i)});
+  // The core: u along its first side (ring nodes 0 .. a), v along its second (a .. a + b).
+  std::vector<std::uint32_t> grid(static_cast<std::size_t>(a + 1) * (b + 1), kUnset);
+  const auto g = [&](std::uint32_t u, std::uint32_t v) -> std::uint32_t& {
+    return grid[static_cast<std::size_t>(v) * (a + 1) + u];
+  };
+  for (std::uint32_t u = 0; u < a; ++u) g(u, 0) = r(layers, u);
+  for (std::uint32_t v = 0; v < b; ++v) g(a, v) = r(layers, a + v);
+  for (std::uint32_t u = 0; u < a; ++u) g(a - u, b) = r(layers, a + b + u);
+  for (std::uint32_t v = 0; v < b; ++v) g(0, b - v) = r(layers, 2 * a + b + v);
+  for (std::uint32_t v = 1; v < b; ++v)
+    for (std::uint32_t u = 1; u < a; ++u) g(u, v) = fresh();
+  for (std::uint32_t v = 0; v < b; ++v)
+    for (std::uint32_t u = 0; u < a; ++u)
+      f.quads.push_back({g(u, v), g(u + 1, v), g(u + 1, v + 1), g(u, v + 1)});
+  return f;
+}
+
 void place_harmonic(TurnFill& fill, const std::vector<Vec2>& cycle, int sweeps) {
   const std::size_t n = cycle.size();
   std::vector<std::vector<std::uint32_t>> next_to(fill.interior.size());

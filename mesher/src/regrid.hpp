@@ -35,6 +35,14 @@ std::optional<TurnFill> lattice_fill(const std::vector<int>& turn);
 /// and every L_j >= 1. Inner positions are left at zero (place_harmonic).
 std::optional<TurnFill> sided_fill(const std::vector<int>& turn);
 
+/// A cycle of n nodes all straight (turn 0; n even, at least 8): an O-grid. `layers` rings of
+/// n quads inside the cycle, then a core grid of a x b quads (a = n / 4, b = n / 2 - a) whose
+/// four corners are its only irregular nodes (three quads each), the first corner on the ring
+/// under cycle node `start`. Inner positions are left at zero (place_harmonic).
+std::optional<TurnFill> ogrid_fill(const std::vector<int>& turn,
+                                   std::uint32_t layers,
+                                   std::uint32_t start);
+
 /// Every inner node at the mean of its neighbours along quad edges, `sweeps` Gauss-Seidel
 /// sweeps from the cycle's centroid (a discrete harmonic map onto the cycle's polygon).
 void place_harmonic(TurnFill& fill, const std::vector<Vec2>& cycle, int sweeps);

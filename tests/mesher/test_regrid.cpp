@@ -37,11 +37,10 @@ std::map<std::uint32_t, int> quads_at(const TurnFill& f) {
 
 /// The fill is a quad mesh of a disk whose boundary is the cycle: every edge is in two quads
 /// but the cycle's, each once and the way the cycle runs; each cycle node in 2 - turn quads;
-/// inner nodes in four quads, but `centre` (an inner node id, or none) in `centre_quads`.
+/// inner nodes in four quads, but those of `irregular` (inner node id: its quads).
 void check_fill(const TurnFill& f,
                 const std::vector<int>& turn,
-                std::uint32_t centre = 0,
-                int centre_quads = 4) {
+                const std::map<std::uint32_t, int>& irregular = {}) {
   const auto n = static_cast<std::uint32_t>(turn.size());
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
   for (const auto& q : f.quads) {
@@ -61,7 +60,8 @@ void check_fill(const TurnFill& f,
   }
   for (std::uint32_t v = n; v < n + f.interior.size(); ++v) {
     INFO("inner node " << v);
-    CHECK(at.at(v) == (v == centre ? centre_quads : 4));
+    const auto special = irregular.find(v);
+    CHECK(at.at(v) == (special != irregular.end() ? special->second : 4));
   }
   // Euler for a disk: V - E + F = 1.
   const long edges = static_cast<long>(directed.size() + n) / 2;
@@ -203,7 +203,7 @@ TEST_CASE("a cycle of three or five corners gets grids round one centre node", "
     REQUIRE(f);
     CHECK(f->quads.size() == c.quads);
     const auto centre = static_cast<std::uint32_t>(turn.size());  // the first inner node
-    check_fill(*f, turn, centre, static_cast<int>(c.sides.size()));
+    check_fill(*f, turn, {{centre, static_cast<int>(c.sides.size())}});
     // On a regular polygon: valid quads, the centre inside (at the middle when the sides are
     // equal).
     auto placed = *f;
@@ -226,5 +226,46 @@ TEST_CASE("a cycle of three or five corners gets grids round one centre node", "
   std::size_t quads = 0;
   for (std::size_t i = 0; i < 5; ++i) quads += static_cast<std::size_t>(L[(i + 4) % 5] * L[i]);
   CHECK(f->quads.size() == quads);
-  check_fill(*f, turn, static_cast<std::uint32_t>(turn.size()), 5);
+  check_fill(*f, turn, {{static_cast<std::uint32_t>(turn.size()), 5}});
+}
+
+TEST_CASE("a cycle whose nodes are all straight gets an O-grid: rings round a core grid",
+          "[regrid]") {
+  // n cycle nodes, `layers` rings of n quads, a core of a x b quads (a = n / 4, b = n / 2 - a)
+  // whose four corners, on the last ring, are the only inner nodes in three quads.
+  for (std::uint32_t n : {8u, 10u, 12u, 14u, 20u, 22u})
+    for (std::uint32_t layers : {1u, 2u, 3u})
+      for (std::uint32_t start : {0u, 1u, n / 8, n - 1}) {
+        INFO(n << " cycle nodes, " << layers << " layers, first corner under " << start);
+        const std::vector<int> turn(n, 0);
+        const auto f = ogrid_fill(turn, layers, start);
+        REQUIRE(f);
+        const std::uint32_t a = n / 4, b = n / 2 - a;
+        CHECK(f->quads.size() == layers * n + a * b);
+        CHECK(f->interior.size() == layers * n + (a - 1) * (b - 1));
+        // The last ring's nodes come after the others (ring l's node i is n + (l - 1) n + i,
+        // i counted from `start`); its nodes 0, a, a + b and 2a + b are the core's corners.
+        std::map<std::uint32_t, int> corners;
+        for (std::uint32_t i : {0u, a, a + b, 2 * a + b}) corners[n + (layers - 1) * n + i] = 3;
+        check_fill(*f, turn, corners);
+        // On a regular polygon (a circle's chords): valid quads, none much distorted.
+        auto placed = *f;
+        const double radius = 2.0 + 0.5 * static_cast<double>(n);
+        std::vector<Vec2> poly;
+        for (std::uint32_t i = 0; i < n; ++i) {
+          const double t = 0.2 + 2.0 * kPi * static_cast<double>(i) / static_cast<double>(n);
+          poly.push_back({radius * std::cos(t), radius * std::sin(t)});
+        }
+        place_harmonic(placed, poly, 500);
+        CHECK(worst_placed(placed, poly) > 0.3);
+      }
+  // A corner (a turn of 1 and one of -1: the turns still add up to 0), an odd cycle, too few
+  // nodes, no layer: none.
+  std::vector<int> bent(12, 0);
+  bent[2] = 1;
+  bent[7] = -1;
+  CHECK_FALSE(ogrid_fill(bent, 1, 0));
+  CHECK_FALSE(ogrid_fill(std::vector<int>(11, 0), 1, 0));
+  CHECK_FALSE(ogrid_fill(std::vector<int>(6, 0), 1, 0));
+  CHECK_FALSE(ogrid_fill(std::vector<int>(12, 0), 0, 0));
 }
