@@ -81,11 +81,12 @@ constexpr int kRegridSweeps = 100;
 /// the centre twice as large as the rest).
 constexpr double kRegridCountRatio = 1.5;
 /// A regrid may take its cavity's worst corner below min(the old worst, the re-fill threshold)
-/// by at most kRegridMostDrop, and not below the larger of kRegridLowFloor and the patch's
-/// worst corner when the regrid pass began, when no more of the cavity's quads are beyond the
-/// skew or aspect thresholds (session 44): the rings whose worst corner the regrid could not
-/// keep to the bit are gridded too (cgal_wiggly_03_cgal: 42 quads, tapered 25 -> 12, worst
-/// 0.688 -> 0.680; 15.6% -> 12.2% tapered in all).
+/// by at most kRegridMostDrop, and not below the larger of kRegridLowFloor and the best worst
+/// corner the patch's outline allows (outline_bound), when no more of the cavity's quads are
+/// beyond the skew or aspect thresholds (session 44): where the outline forces a worse corner
+/// anyway, the rings whose worst corner the regrid could not keep to the bit are gridded too
+/// (cgal_wiggly_03_cgal: 42 quads, tapered 25 -> 12, worst 0.688 -> 0.680; 15.6% -> 12.2%
+/// tapered in all), and elsewhere the mesh's worst corner is not traded.
 constexpr double kRegridLowFloor = 0.6;
 constexpr double kRegridMostDrop = 0.03;
 /// A round cavity's O-grids (round_plan): the layers nearest its count and this many - 1 more.
@@ -1068,14 +1069,33 @@ class PatchRefill {
   }
 
  public:
+  /// The best worst corner the patch's quads can have at its pinned nodes, whatever its inner
+  /// nodes do: at a pinned node whose k quads' corners add up to the angle a there (the
+  /// outline's, fixed), sin(a / k) at best (corner_bound's reading, over the whole patch).
+  double outline_bound() const {
+    std::vector<double> angle(pq_.pos.size(), 0.0);
+    std::vector<std::uint32_t> count(pq_.pos.size(), 0);
+    for (std::uint32_t q = 0; q < pq_.quads.size(); ++q) {
+      if (!alive_[q]) continue;
+      const Quad& x = pq_.quads[q];
+      for (std::size_t k = 0; k < 4; ++k) {
+        if (!pq_.fixed[x[k]]) continue;
+        angle[x[k]] +=
+            interior_angle({pq_.pos[x[0]], pq_.pos[x[1]], pq_.pos[x[2]], pq_.pos[x[3]]}, k);
+        ++count[x[k]];
+      }
+    }
+    double bound = 1.0;
+    for (std::uint32_t v = 0; v < pq_.pos.size(); ++v)
+      if (count[v] > 0) bound = std::min(bound, std::sin(angle[v] / count[v]));
+    return bound;
+  }
+
   /// The regrid pass (regrid_plan): every irregular inner node (not in four quads) in node
   /// order, in batches evaluated in parallel as run() does; the quads round it, then the quads
   /// at their nodes, out to kRegridRings rings (at most kRegridQuads quads), are its cavities.
   std::size_t regrid() {
-    double worst = std::numeric_limits<double>::infinity();
-    for (std::uint32_t q = 0; q < pq_.quads.size(); ++q)
-      if (alive_[q]) worst = std::min(worst, jacobian(pq_.quads[q]));
-    regrid_low_ = std::max(kRegridLowFloor, settled(worst));
+    regrid_low_ = std::max(kRegridLowFloor, settled(outline_bound()));
     std::vector<std::uint32_t> candidates;
     for (std::uint32_t v = 0; v < pq_.pos.size(); ++v)
       if (!pq_.fixed[v] && !around_[v].empty() && around_[v].size() != 4) candidates.push_back(v);
