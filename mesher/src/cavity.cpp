@@ -1069,33 +1069,12 @@ class PatchRefill {
   }
 
  public:
-  /// The best worst corner the patch's quads can have at its pinned nodes, whatever its inner
-  /// nodes do: at a pinned node whose k quads' corners add up to the angle a there (the
-  /// outline's, fixed), sin(a / k) at best (corner_bound's reading, over the whole patch).
-  double outline_bound() const {
-    std::vector<double> angle(pq_.pos.size(), 0.0);
-    std::vector<std::uint32_t> count(pq_.pos.size(), 0);
-    for (std::uint32_t q = 0; q < pq_.quads.size(); ++q) {
-      if (!alive_[q]) continue;
-      const Quad& x = pq_.quads[q];
-      for (std::size_t k = 0; k < 4; ++k) {
-        if (!pq_.fixed[x[k]]) continue;
-        angle[x[k]] +=
-            interior_angle({pq_.pos[x[0]], pq_.pos[x[1]], pq_.pos[x[2]], pq_.pos[x[3]]}, k);
-        ++count[x[k]];
-      }
-    }
-    double bound = 1.0;
-    for (std::uint32_t v = 0; v < pq_.pos.size(); ++v)
-      if (count[v] > 0) bound = std::min(bound, std::sin(angle[v] / count[v]));
-    return bound;
-  }
-
   /// The regrid pass (regrid_plan): every irregular inner node (not in four quads) in node
   /// order, in batches evaluated in parallel as run() does; the quads round it, then the quads
   /// at their nodes, out to kRegridRings rings (at most kRegridQuads quads), are its cavities.
   std::size_t regrid() {
-    regrid_low_ = std::max(kRegridLowFloor, settled(outline_bound()));
+    regrid_low_ =
+        std::max(kRegridLowFloor, settled(outline_bound(pq_.pos, pq_.fixed, pq_.quads, &alive_)));
     std::vector<std::uint32_t> candidates;
     for (std::uint32_t v = 0; v < pq_.pos.size(); ++v)
       if (!pq_.fixed[v] && !around_[v].empty() && around_[v].size() != 4) candidates.push_back(v);

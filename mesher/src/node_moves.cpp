@@ -734,6 +734,27 @@ void optimize_nodes(std::vector<Vec2>& pos,
   sweep_nodes(pos, fixed, around, quads, iterations, schedule, visit);
 }
 
+double outline_bound(const std::vector<Vec2>& pos,
+                     const std::vector<bool>& fixed,
+                     const std::vector<std::array<std::uint32_t, 4>>& quads,
+                     const std::vector<bool>* alive) {
+  std::vector<double> angle(pos.size(), 0.0);
+  std::vector<std::uint32_t> count(pos.size(), 0);
+  for (std::size_t q = 0; q < quads.size(); ++q) {
+    if (alive && !(*alive)[q]) continue;
+    const auto& x = quads[q];
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (!fixed[x[k]]) continue;
+      angle[x[k]] += interior_angle({pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]}, k);
+      ++count[x[k]];
+    }
+  }
+  double bound = 1.0;
+  for (std::size_t v = 0; v < pos.size(); ++v)
+    if (count[v] > 0) bound = std::min(bound, std::sin(angle[v] / count[v]));
+  return bound;
+}
+
 void untaper_nodes(std::vector<Vec2>& pos,
                    const std::vector<bool>& fixed,
                    const std::vector<std::array<std::uint32_t, 4>>& quads,
@@ -755,6 +776,14 @@ void untaper_nodes(std::vector<Vec2>& pos,
     const auto& x = quads[q];
     return 0.5 * cross(pos[x[2]] - pos[x[0]], pos[x[3]] - pos[x[1]]);
   };
+  // Loose (kLooseUntaperBelow): the outline forces a worse corner than the bar anyway; each
+  // quad's worst corner when the sweeps began bounds how far a move may lower it.
+  const bool loose = settled(outline_bound(pos, fixed, quads)) < settled(kLooseUntaperBelow);
+  std::vector<double> first;
+  if (loose)
+    for (const auto& x : quads)
+      first.push_back(min_scaled_jacobian(pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]));
+  const double slack = loose ? kLooseUntaperSlack : kUntaperJacobianSlack;
   // Per quad round the node being moved: its faults before the move (scratch, its thread's
   // own: sweep_nodes; a visit binds it once).
   thread_local std::vector<unsigned> t_faults;
@@ -844,9 +873,16 @@ void untaper_nodes(std::vector<Vec2>& pos,
       const double before =
           measure(faults, v, worst_before, jacobians_before, ratio_before, tapered_before, nullptr);
       const double ratio_cap = std::max(ratio_before, kUntaperAreaRatio);
+      double worst_floor = settled(worst_before);
+      if (loose) {
+        double least = std::numeric_limits<double>::infinity();
+        for (std::uint32_t q : around[v]) least = std::min(least, first[q]);
+        worst_floor =
+            std::min(worst_floor, settled(std::max(kLooseUntaperBelow, least - kLooseUntaperDrop)));
+      }
       const Bar bar{before - kUntaperGain,
-                    descend ? tapered_before : std::numeric_limits<int>::max(),
-                    settled(worst_before), worst_before > 0.0, ratio_cap};
+                    descend ? tapered_before : std::numeric_limits<int>::max(), worst_floor,
+                    worst_before > 0.0, ratio_cap};
       // Moves v to p when that passes every test; else leaves it where it was.
       const auto try_move = [&](Vec2 p) {
         pos[v] = p;
@@ -854,8 +890,8 @@ void untaper_nodes(std::vector<Vec2>& pos,
         int tapered = 0;
         const double after = measure(faults, v, worst, jacobians, ratio, tapered, &bar);
         if (after < before - kUntaperGain && (!descend || tapered <= tapered_before) &&
-            settled(worst) >= settled(worst_before) && keeps_sign(worst_before, worst) &&
-            ratio <= ratio_cap && jacobians >= jacobians_before - kUntaperJacobianSlack)
+            settled(worst) >= worst_floor && keeps_sign(worst_before, worst) &&
+            ratio <= ratio_cap && jacobians >= jacobians_before - slack)
           return true;
         pos[v] = old;
         return false;

@@ -262,6 +262,30 @@ TEST_CASE("untapering makes a jittered grid's quads parallelograms again, losing
   CHECK(after_total < before_total / 10);
 }
 
+TEST_CASE("the outline's bound is the best corner its fixed nodes allow", "[fill][smooth]") {
+  // A 3 x 3 grid, its outer ring fixed: at a fixed node whose k quads' corners add up to a,
+  // no quads can do better than sin(a / k). On a rectangle every such corner is a right angle
+  // (1); sheared to corners of 30 and 150 degrees, the outline's corners hold 0.5 whatever
+  // the inner nodes do. Only the quads marked alive count (none: 1).
+  const auto quads = grid_quads();
+  std::vector<bool> fixed(16, true);
+  fixed[5] = fixed[6] = fixed[9] = fixed[10] = false;
+  const double shear = 1.0 / std::tan(kPi / 6.0);  // 30 degrees at the first corner
+  for (const double s : {0.0, shear}) {
+    std::vector<Vec2> pos;
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) pos.push_back({i + s * j, 1.0 * j});
+    INFO("shear " << s);
+    CHECK(outline_bound(pos, fixed, quads) == Approx(s == 0.0 ? 1.0 : 0.5).epsilon(1e-12));
+    pos[5] = pos[5] + Vec2{0.3, -0.2};  // inner nodes do not count
+    CHECK(outline_bound(pos, fixed, quads) == Approx(s == 0.0 ? 1.0 : 0.5).epsilon(1e-12));
+    std::vector<bool> alive(quads.size(), true);
+    CHECK(outline_bound(pos, fixed, quads, &alive) == outline_bound(pos, fixed, quads));
+    alive.assign(quads.size(), false);
+    CHECK(outline_bound(pos, fixed, quads, &alive) == 1.0);
+  }
+}
+
 TEST_CASE("faces with corners get coarse quads split in four, not only kites", "[fill]") {
   // Hexagons (two and four edges a side) read as one side: six corners, so no strip and no
   // corner grid; the unstructured templates take them. A triangle split into three gives
