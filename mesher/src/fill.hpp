@@ -376,12 +376,14 @@ double outline_bound(const std::vector<Vec2>& pos,
                      const std::vector<bool>* alive = nullptr);
 
 /// Where a patch's outline forces a corner below this anyway (outline_bound: a ragged outline's
-/// sharp corners), untaper_nodes trades more of the other quads' shape for taper: a move may
-/// lower the worst quad round its node to max(this, the least of those quads' first worst -
-/// kLooseUntaperDrop), and their sum by kLooseUntaperSlack. The mesh's worst corner stays
+/// sharp corners, a corner under 48 degrees, a reflex corner of two quads), untaper_nodes
+/// trades more of the other quads' shape for taper: a move may lower the worst quad round its
+/// node to max(kLooseUntaperFloor, the outline's bound, the least of those quads' first worst
+/// - kLooseUntaperDrop), and their sum by kLooseUntaperSlack. The mesh's worst corner stays
 /// where the outline puts it. cgal_wiggly_03_cgal 12.2% -> 9.9% at taper <= 0.8,
-/// cgal_complex_1 31.6% -> 27.2% (session 44).
-constexpr double kLooseUntaperBelow = 0.6;
+/// cgal_complex_1 31.6% -> 26.8% (session 44).
+constexpr double kLooseUntaperBelow = 0.75;
+constexpr double kLooseUntaperFloor = 0.6;
 constexpr double kLooseUntaperDrop = 0.1;
 constexpr double kLooseUntaperSlack = 0.05;
 

@@ -778,7 +778,8 @@ void untaper_nodes(std::vector<Vec2>& pos,
   };
   // Loose (kLooseUntaperBelow): the outline forces a worse corner than the bar anyway; each
   // quad's worst corner when the sweeps began bounds how far a move may lower it.
-  const bool loose = settled(outline_bound(pos, fixed, quads)) < settled(kLooseUntaperBelow);
+  const double bound = settled(outline_bound(pos, fixed, quads));
+  const bool loose = bound < settled(kLooseUntaperBelow);
   std::vector<double> first;
   if (loose)
     for (const auto& x : quads)
@@ -877,8 +878,8 @@ void untaper_nodes(std::vector<Vec2>& pos,
       if (loose) {
         double least = std::numeric_limits<double>::infinity();
         for (std::uint32_t q : around[v]) least = std::min(least, first[q]);
-        worst_floor =
-            std::min(worst_floor, settled(std::max(kLooseUntaperBelow, least - kLooseUntaperDrop)));
+        worst_floor = std::min(
+            worst_floor, settled(std::max({kLooseUntaperFloor, bound, least - kLooseUntaperDrop})));
       }
       const Bar bar{before - kUntaperGain,
                     descend ? tapered_before : std::numeric_limits<int>::max(), worst_floor,
