@@ -99,23 +99,27 @@ constexpr std::size_t kWholeNodes = 1000;
 /// three grids have 1.73x the rails' fill, quads h along the sides by 0.58 h across).
 constexpr double kWholeMoreQuads = 2.0;
 
-/// Whether the quad a, b, c, d (counter-clockwise, in a plane) is beyond a threshold of
-/// quality.md that Table III counts: taper, skew or aspect ratio.
-bool beyond_thresholds(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  const QuadQuality m = measure_quad(
+/// quality.md's measures of the quad a, b, c, d (counter-clockwise, in a plane). The re-fill
+/// counts what the report counts with the report's own measure (measure_quad), not the
+/// smoothing's cheaper midline_faults: a 60-degree rhombus's skew is 30 degrees exactly, and
+/// the two round it differently.
+QuadQuality planar_quality(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  return measure_quad(
       {Vec3{a.x, a.y, 0.0}, Vec3{b.x, b.y, 0.0}, Vec3{c.x, c.y, 0.0}, Vec3{d.x, d.y, 0.0}},
       Vec3{0.0, 0.0, 1.0});
-  return m.taper <= QualityThresholds::kTaper || m.skew_deg >= QualityThresholds::kSkewDeg ||
+}
+
+/// Whether a quad is beyond quality.md's skew or aspect-ratio threshold.
+bool skewed_or_stretched(const QuadQuality& m) {
+  return m.skew_deg >= QualityThresholds::kSkewDeg ||
          m.aspect_ratio >= QualityThresholds::kAspectRatio;
 }
 
-/// Whether the quad a, b, c, d is beyond quality.md's skew or aspect-ratio threshold.
-bool skewed_or_stretched(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  const QuadQuality m = measure_quad(
-      {Vec3{a.x, a.y, 0.0}, Vec3{b.x, b.y, 0.0}, Vec3{c.x, c.y, 0.0}, Vec3{d.x, d.y, 0.0}},
-      Vec3{0.0, 0.0, 1.0});
-  return m.skew_deg >= QualityThresholds::kSkewDeg ||
-         m.aspect_ratio >= QualityThresholds::kAspectRatio;
+/// Whether the quad a, b, c, d is beyond a threshold of quality.md that Table III counts:
+/// taper, skew or aspect ratio.
+bool beyond_thresholds(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  const QuadQuality m = planar_quality(a, b, c, d);
+  return m.taper <= QualityThresholds::kTaper || skewed_or_stretched(m);
 }
 
 /// A set of ids cleared in O(1): an id is in it when its mark is the present stamp. Each user
@@ -915,10 +919,10 @@ class PatchRefill {
     return judged_grid("regrid", std::move(*fill), cavity, cycle, old, false, log, header);
   }
 
-  /// A round cavity (every cycle node in two of its quads; regrid_plan): O-grids of
-  /// kRoundLayers[k] + the layers that best match its count, each with its core's first
-  /// corner under the cycle's first node or half a core side on (kRoundStarts); of those
-  /// kept, the one with the fewest tapered quads (the first on ties).
+  /// A round cavity (every cycle node in two of its quads; regrid_plan): O-grids of the layers
+  /// whose count best matches the cavity's and of kRoundLayers - 1 more, each with its core's
+  /// first corner under the cycle's first node or n / 8 nodes on; of those kept, the one with
+  /// the fewest tapered quads (the first on ties).
   template <class Header>
   std::optional<Plan> round_plan(const std::vector<std::uint32_t>& cavity,
                                  const std::vector<std::uint32_t>& cycle,
@@ -1019,38 +1023,34 @@ class PatchRefill {
     // Judged after kRefillSweeps sweeps whatever the smoothing asked for, so that the choice,
     // and the element count, do not depend on it; the new quads keep those positions (also
     // with --smooth 0: the harmonic positions alone may fold where the cavity is not convex).
-    const auto tapered = [every_measure](const Local& l, std::size_t count) {
+    // How many of the first `count` quads of l are beyond: tapered (every_measure: any
+    // threshold Table III counts), or skewed or stretched (`skew`).
+    const auto beyond = [every_measure](const Local& l, std::size_t count, bool skew = false) {
       std::size_t t = 0;
       for (std::size_t q = 0; q < count; ++q) {
         const Quad& x = l.quads[q];
         const Vec2 a = l.pos[x[0]], b = l.pos[x[1]], c = l.pos[x[2]], d = l.pos[x[3]];
-        if (every_measure ? beyond_thresholds(a, b, c, d)
-                          : quad_taper(a, b, c, d) <= QualityThresholds::kTaper)
+        if (skew            ? skewed_or_stretched(planar_quality(a, b, c, d))
+            : every_measure ? beyond_thresholds(a, b, c, d)
+                            : quad_taper(a, b, c, d) <= QualityThresholds::kTaper)
           ++t;
       }
       return t;
     };
     const Local was = relaxed(cyc, cycle, old.inner, old.quads, ring, cf, kRefillSweeps);
-    const std::size_t t_was = tapered(was, old.quads.size());
+    const std::size_t t_was = beyond(was, old.quads.size());
     if (t_was == 0) return answer;  // nothing to gain
     Local now = relaxed(cyc, cycle, fill.interior, fill.quads, ring, cf, kRefillSweeps);
-    const std::size_t t_now = tapered(now, fill.quads.size());
+    const std::size_t t_now = beyond(now, fill.quads.size());
     // A whole patch keeps its worst corner (every_measure): cheaper than a regrid's bound,
     // which may trade a patch's worst down to the threshold for fewer tapered quads.
     const double floor = every_measure ? settled(was.worst) : std::min(settled(was.worst), below_);
     // Below that floor (not for a whole patch), down to regrid_low_, with no more quads beyond
     // the skew or aspect thresholds.
-    const auto skewed = [](const Local& l, std::size_t count) {
-      std::size_t t = 0;
-      for (std::size_t q = 0; q < count; ++q) {
-        const Quad& x = l.quads[q];
-        t += skewed_or_stretched(l.pos[x[0]], l.pos[x[1]], l.pos[x[2]], l.pos[x[3]]) ? 1u : 0u;
-      }
-      return t;
-    };
-    const bool lower_ok = !every_measure && settled(now.worst) >= std::min(floor, regrid_low_) &&
-                          settled(now.worst) >= floor - kRegridMostDrop &&
-                          skewed(now, fill.quads.size()) <= skewed(was, old.quads.size());
+    const bool lower_ok =
+        !every_measure && settled(now.worst) >= std::min(floor, regrid_low_) &&
+        settled(now.worst) >= floor - kRegridMostDrop &&
+        beyond(now, fill.quads.size(), true) <= beyond(was, old.quads.size(), true);
     answer->keep =
         t_now < t_was && now.worst > kMinValidJacobian && (settled(now.worst) >= floor || lower_ok);
     static const bool debug = std::getenv("LAYTRACKS_DEBUG_CAVITY") != nullptr;
