@@ -17,6 +17,7 @@
 #include "laytracks/mesher/build_quads.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -43,6 +44,8 @@ constexpr std::uint32_t kNone = 0xffffffffu;
 /// most this below the source's (rounding in the motion; a larger loss means the shapes
 /// differ where the tolerance did not see it, and the face is filled anew).
 constexpr double kSharedFaceSlack = 1e-6;
+/// set_small_face_sharing's switch.
+std::atomic<bool> g_small_face_sharing{true};
 /// fill_patches fills the faces of at most this many nodes before the others.
 constexpr std::size_t kSmallFaceFirst = 16;
 /// A boundary piece longer than this x h is split into round(length / h) mesh edges.
@@ -1768,31 +1771,42 @@ class QuadBuilder {
       filled[p].resize(pending[p].size());
       for (std::size_t f = 0; f < pending[p].size(); ++f) jobs.emplace_back(p, f);
     }
-    // A large face that is an earlier one moved (turned, mirrored, scaled) takes its quads,
-    // moved (kSharedFaceNodes): the first of its kind in job order is filled, in every pose.
+    // A face that is an earlier one moved takes its quads, moved: a large face (kSharedFaceNodes)
+    // turned, mirrored, scaled or shifted, a small one (kSharedSmallFaceNodes) only turned,
+    // scaled or shifted with its cycle from the same node. The first of its kind in job order
+    // is filled, in every pose.
     struct Copy {
       std::size_t source;
       FaceMotion motion;
     };
     std::vector<std::optional<Copy>> copy(jobs.size());
-    // Large faces filled from scratch, by face_shape_key: only those whose keys are within
-    // the tolerance are tried.
-    std::multimap<double, std::size_t> originals;
+    // Faces filled from scratch, by face_shape_key: only those whose keys are within the
+    // tolerance are tried; small faces also by their first edge over their perimeter (squared:
+    // a node off by the tolerance moves it by 4 x the tolerance over n at most), since their
+    // copies start where they do. A shell of many equal facets (a cylinder's, a torus')
+    // has thousands of small faces of one key.
+    std::multimap<double, std::size_t> originals, small_originals;
+    std::vector<double> lead(jobs.size(), 0.0);
     for (std::size_t j = 0; j < jobs.size(); ++j) {
       const FaceInput& in = pending[jobs[j].first][jobs[j].second].in;
-      if (in.cycle.size() < kSharedFaceNodes) continue;
+      const std::size_t n = in.cycle.size();
+      const bool small = n < kSharedFaceNodes;
+      if (n < kSharedSmallFaceNodes || (small && !g_small_face_sharing)) continue;
       const double key = face_shape_key(in);
       const double reach =
           16.0 * kCongruentTolerance * key;  // a node off by the tolerance moves it by 8x at most
-      for (auto it = originals.lower_bound(key - reach);
-           it != originals.end() && it->first <= key + reach; ++it) {
+      if (small) lead[j] = leading_edge_key(in);
+      std::multimap<double, std::size_t>& pool = small ? small_originals : originals;
+      for (auto it = pool.lower_bound(key - reach); it != pool.end() && it->first <= key + reach;
+           ++it) {
+        if (small && std::abs(lead[it->second] - lead[j]) > 16.0 * kCongruentTolerance) continue;
         const auto [p, f] = jobs[it->second];
-        if (std::optional<FaceMotion> m = face_motion(pending[p][f].in, in)) {
+        if (std::optional<FaceMotion> m = face_motion(pending[p][f].in, in, small)) {
           copy[j] = Copy{it->second, std::move(*m)};
           break;
         }
       }
-      if (!copy[j]) originals.emplace(key, j);
+      if (!copy[j]) pool.emplace(key, j);
     }
     const auto fill_jobs = [&](const std::vector<std::size_t>& which) {
       parallel_for(which.size(), [&](std::size_t w) {
@@ -1830,7 +1844,10 @@ class QuadBuilder {
       const auto [p, f] = jobs[j];
       const FaceMesh& from = filled[jobs[copy[j]->source].first][jobs[copy[j]->source].second];
       FaceMesh moved = moved_fill(from, pending[p][f].in, copy[j]->motion);
-      if (from.min_jacobian >= kAcceptJacobian &&
+      // A large face filled badly is filled anew (a mirrored copy may take another template);
+      // a small face's copy starts and turns as its source, and takes what its source took.
+      const bool small = pending[p][f].in.cycle.size() < kSharedFaceNodes;
+      if ((small || from.min_jacobian >= kAcceptJacobian) &&
           moved.min_jacobian >= from.min_jacobian - kSharedFaceSlack) {
         filled[p][f] = std::move(moved);
         ++result_.stats.shared_faces;
@@ -2065,6 +2082,8 @@ class QuadBuilder {
 };
 
 }  // namespace
+
+void set_small_face_sharing(bool on) { g_small_face_sharing = on; }
 
 QuadResult build_quads(const Part& part, const CutGraph& graph, const QuadOptions& options) {
   return QuadBuilder(part, graph, options).run();

@@ -2508,7 +2508,7 @@ struct NodeMarks {
 
 }  // namespace
 
-std::optional<FaceMotion> face_motion(const FaceInput& from, const FaceInput& to) {
+std::optional<FaceMotion> face_motion(const FaceInput& from, const FaceInput& to, bool turned_only) {
   const std::size_t n = to.cycle.size();
   if (from.cycle.size() != n || from.sides.size() != to.sides.size() || n < 3) return std::nullopt;
   const NodeMarks a(from), b(to);
@@ -2529,9 +2529,10 @@ std::optional<FaceMotion> face_motion(const FaceInput& from, const FaceInput& to
   if (!cornered) k0 = 0;
   FaceMotion m;
   m.node.resize(n);
-  for (int mirrored = 0; mirrored < 2; ++mirrored)
+  for (int mirrored = 0; mirrored < (turned_only ? 1 : 2); ++mirrored)
     for (std::size_t i0 = 0; i0 < n; ++i0) {
       if (cornered && !a.corner[i0]) continue;
+      if (turned_only && i0 != k0) continue;  // node k0 onto node k0: every node onto itself
       // to's node k is from's node shift + k, or shift - k (mirrored: the cycle runs back);
       // node k0 is from's i0.
       const std::size_t shift = mirrored ? (i0 + k0) % n : (i0 + n - k0) % n;
@@ -2567,6 +2568,15 @@ std::optional<FaceMotion> face_motion(const FaceInput& from, const FaceInput& to
       if (same) return m;
     }
   return std::nullopt;
+}
+
+double leading_edge_key(const FaceInput& face) {
+  const std::size_t n = face.cycle.size();
+  if (n < 2) return 0.0;
+  double perimeter = 0.0;
+  for (std::size_t k = 0; k < n; ++k) perimeter += distance(face.cycle[k], face.cycle[(k + 1) % n]);
+  const Vec2 first = face.cycle[1] - face.cycle[0];
+  return perimeter > 0.0 ? dot(first, first) / (perimeter * perimeter) : 0.0;
 }
 
 double face_shape_key(const FaceInput& face) {

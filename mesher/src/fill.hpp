@@ -150,8 +150,17 @@ std::optional<FaceMesh> fill_kites(const FaceInput& face);
 /// Faces of at least this many nodes are looked for among the faces filled before them
 /// (face_motion): filling one takes 10-70 ms when it goes to the unstructured templates, and
 /// parts repeat their features (a row of bosses, a symmetric cover: cover_bosses has four
-/// copies each of a 46-node and a 56-node face). Smaller faces cost less than the search.
+/// copies each of a 46-node and a 56-node face).
 constexpr std::size_t kSharedFaceNodes = 32;
+
+/// Smaller faces of at least this many nodes are looked for too, but only as the same face
+/// turned, scaled and shifted with its cycle from the same node (face_motion's turned_only):
+/// the templates read a cycle from its first node, so such a copy filled on its own would get
+/// the same quads moved (up to rounding), and sharing changes no choice. A shell of equal
+/// facets (a cylinder's sides, a torus of triangles) has thousands of these, and the facets'
+/// corners go to the unstructured templates (torus_48_16_tri: 2452 faces of 8 nodes, 0.96 s
+/// of the quads stage's 1.66 s on one thread). Four nodes are the quad itself.
+constexpr std::size_t kSharedSmallFaceNodes = 6;
 
 /// Two faces are one moved onto the other when every node lands within this x the mean edge
 /// of the second: far above rounding (1e-15), far below any difference of shape a template
@@ -171,8 +180,14 @@ struct FaceMotion {
 /// The motion taking `from` to `to`, when there is one: the same node count, the same sides
 /// (kinds, corners, joints) and free nodes in the same places, and every node within
 /// kCongruentTolerance of its image. Cycles may start at any node; a mirror runs them the
-/// other way.
-std::optional<FaceMotion> face_motion(const FaceInput& from, const FaceInput& to);
+/// other way. With `turned_only`, no mirror and each node k onto node k.
+std::optional<FaceMotion> face_motion(const FaceInput& from,
+                                      const FaceInput& to,
+                                      bool turned_only = false);
+
+/// The first edge's squared length over the squared perimeter: with face_shape_key, the
+/// lookup key of a face whose copies must start where it does.
+double leading_edge_key(const FaceInput& face);
 
 /// A number two faces of the same shape (turned, mirrored, scaled, shifted) share but for
 /// rounding: the nodes' mean squared distance from their centre over the squared perimeter

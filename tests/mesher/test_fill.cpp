@@ -596,6 +596,13 @@ TEST_CASE("a face that is another one turned, mirrored, scaled and shifted takes
       const FaceInput g = moved_face(f, shift, mirror, 2.1, 1e-3, {1e3, -7.0});
       const std::optional<FaceMotion> m = face_motion(f, g);
       REQUIRE(m);
+      // Turned only: each node onto itself, no mirror.
+      const std::optional<FaceMotion> turned = face_motion(f, g, true);
+      CHECK(turned.has_value() == (!mirror && shift == 0));
+      if (turned) {
+        for (std::uint32_t k = 0; k < n; ++k) CHECK(turned->node[k] == k);
+        CHECK(leading_edge_key(g) == Approx(leading_edge_key(f)).epsilon(1e-9));
+      }
       CHECK(m->mirrored == mirror);
       for (std::uint32_t k = 0; k < n; ++k)
         CHECK(m->node[k] == (mirror ? (shift + n - k) % n : (shift + k) % n));

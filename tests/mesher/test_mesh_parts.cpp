@@ -1155,6 +1155,36 @@ TEST_CASE("a part's repeated large faces are filled once and the copies take the
   }
 }
 
+TEST_CASE("a shell's repeated small faces are filled once, and the mesh is the one without sharing",
+          "[mesh][shared]") {
+  // cyl6_tri_fan.json: six side facets of two triangles and two caps fanned from the centre,
+  // so most faces of 6-31 nodes come again in the other facets, turned, with their cycles from
+  // the same node; those take their source's quads, moved (kSharedSmallFaceNodes). Their own
+  // fills would read the same cycle from the same node and give the same quads: the mesh must
+  // be the same as without sharing, up to rounding in the motion.
+  const Part part = build_part(read_brep_json(test_data_dir() + "/parts/cyl6_tri_fan.json"));
+  set_small_face_sharing(false);
+  const MeshPartResult off = mesh_part(part);
+  set_small_face_sharing(true);
+  const MeshPartResult on = mesh_part(part);
+  REQUIRE(off.check.valid());
+  REQUIRE(on.check.valid());
+  CHECK(on.stats.shared_faces >= off.stats.shared_faces + 500);
+  REQUIRE(on.mesh.nodes.size() == off.mesh.nodes.size());
+  REQUIRE(on.mesh.elements.size() == off.mesh.elements.size());
+  for (std::size_t e = 0; e < on.mesh.elements.size(); ++e)
+    REQUIRE(on.mesh.elements[e].nodes == off.mesh.elements[e].nodes);
+  double moved = 0.0;
+  for (std::size_t v = 0; v < on.mesh.nodes.size(); ++v)
+    moved = std::max(moved, norm(on.mesh.nodes[v] - off.mesh.nodes[v]));
+  CHECK(moved < 1e-9 * part.size);
+  CHECK(on.quality.measures[2].bad_percent == Approx(off.quality.measures[2].bad_percent));
+  // Every pose shares the same faces.
+  const std::vector<MeshPartResult> poses = check_three_poses(read_brep_json(
+      test_data_dir() + "/parts/cyl6_tri_fan.json"), 0.3);
+  for (const MeshPartResult& r : poses) CHECK(r.stats.shared_faces == on.stats.shared_faces);
+}
+
 TEST_CASE("rails crowding onto a small round hole are thinned to 0.65 h apart", "[mesh][round]") {
   // cover_bosses: four bosses' holes of radius 3.5 in 16 chords of 22.5 degrees, h = 2; the
   // axis beside them is wide enough that a chord end's fan would hold more than three rails,

@@ -203,6 +203,12 @@ void set_cavity_memo(bool on);
 /// count depends on their timing, the meshes do not).
 std::size_t cavity_memo_hits();
 
+/// build_quads shares the quads of small faces (6-31 nodes) that are an earlier face turned,
+/// scaled and shifted, its cycle from the same node (docs/mesher.md, "Repeated faces"): the
+/// quads their own fills would give, up to rounding. On unless turned off here, which the tests
+/// do to check that the meshes are the same without it.
+void set_small_face_sharing(bool on);
+
 /// Smooths the interior nodes of every patch in its frame (docs/mesher.md, "Smoothing"):
 /// `iterations` Laplacian sweeps, as many of angle optimisation, then untangling sweeps over
 /// nodes of quads below 0.6, then strictly below 0.7. Nodes on B-Rep edges and seams never
