@@ -549,6 +549,14 @@ void untangle_nodes(std::vector<Vec2>& pos,
       }
     }
     if (current >= target) return false;
+    if (simple) {
+      // A candidate's worst is at most the least corner opposite v, which no move of v
+      // changes: when that is no better than v's worst now, no candidate can be taken
+      // (settled is monotone), and the search would try its 48 or more in vain.
+      double fixed_worst = std::numeric_limits<double>::infinity();
+      for (const Opposite& o : ring) fixed_worst = std::min(fixed_worst, o.jc);
+      if (settled(fixed_worst) <= current) return false;
+    }
     // Step: a quarter of the shortest edge at v.
     edges.clear();
     for (std::uint32_t q : around[v])
