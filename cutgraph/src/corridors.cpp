@@ -418,11 +418,8 @@ bool is_gap(const Part& part, const CutSeg& cs, const TrackSpacing& spacing) {
 }  // namespace
 
 std::vector<TrackSeed> track_seeds(const Part& part,
-                                   const std::vector<MedialAxis>& axes,
-                                   const CutGraph& graph,
-                                   const TrackSpacing& spacing,
-                                   OppositeCache* cache) {
-  const Corridors corridors = find_corridors(part, axes, graph, cache);
+                                   const Corridors& corridors,
+                                   const TrackSpacing& spacing) {
   std::vector<TrackSeed> seeds;
   for (std::size_t m : masters(corridors)) {
     const CutSeg& cs = corridors.segs[m];
@@ -432,11 +429,8 @@ std::vector<TrackSeed> track_seeds(const Part& part,
 }
 
 std::vector<TrackSeed> gap_seeds(const Part& part,
-                                 const std::vector<MedialAxis>& axes,
-                                 const CutGraph& graph,
-                                 const TrackSpacing& spacing,
-                                 OppositeCache* cache) {
-  const Corridors corridors = find_corridors(part, axes, graph, cache);
+                                 const Corridors& corridors,
+                                 const TrackSpacing& spacing) {
   std::vector<TrackSeed> seeds;
   for (const CutSeg& cs : corridors.segs) {
     if (is_gap(part, cs, spacing)) seeds_at(part, cs, cuts_along(part, cs, spacing), seeds);

@@ -70,11 +70,10 @@ struct TrackSpacing {
 
 /// In each corridor, the track rails along its longest CUT-SEG: uniform, round(L / w) tracks
 /// (at least one) at equal spacing, L its length; adaptive, Algorithm III's march.
+/// `corridors`: find_corridors of the graph as it is.
 std::vector<TrackSeed> track_seeds(const Part& part,
-                                   const std::vector<MedialAxis>& axes,
-                                   const CutGraph& graph,
-                                   const TrackSpacing& spacing,
-                                   OppositeCache* cache = nullptr);
+                                   const Corridors& corridors,
+                                   const TrackSpacing& spacing);
 
 /// A CUT-SEG longer than this many widths once the corridors' tracks are laid is a gap: a
 /// side that the longest CUT-SEG's rails do not reach (a corridor whose other side is a
@@ -82,12 +81,10 @@ std::vector<TrackSeed> track_seeds(const Part& part,
 constexpr double kGapWidths = 2.0;
 
 /// Seeds that cut every gap (CUT-SEG longer than kGapWidths x its width) into tracks, as
-/// track_seeds cuts a corridor's longest CUT-SEG.
+/// track_seeds cuts a corridor's longest CUT-SEG (`corridors` as there).
 std::vector<TrackSeed> gap_seeds(const Part& part,
-                                 const std::vector<MedialAxis>& axes,
-                                 const CutGraph& graph,
-                                 const TrackSpacing& spacing,
-                                 OppositeCache* cache = nullptr);
+                                 const Corridors& corridors,
+                                 const TrackSpacing& spacing);
 
 /// Algorithm III, Step 3: below this ratio of the length left to the two end widths the rest
 /// is one track; up to kManyCutsRatio it is two, split in the ratio of the end widths.

@@ -174,22 +174,25 @@ CutGraph build_cut_graph(const Part& part,
   cutgraph_detail::RailLayer layer(part, axes, graph, track_width);
   layer.suppress(suppressed);
   layer.lay_sources();
-  const auto count = [&] {
-    return cutgraph_detail::find_corridors(part, axes, graph, &cache).count;
-  };
-  graph.corridor_count = count();
+  // The corridors of the graph as it is: searched again only after rails were laid (each
+  // search maps every CUT-SEG across the axis; the tracks' seeds and the count share one).
+  const auto corridors_now = [&] { return cutgraph_detail::find_corridors(part, axes, graph, &cache); };
+  cutgraph_detail::Corridors corridors = corridors_now();
+  graph.corridor_count = corridors.count;
   if (tracks && options.lay_tracks) {
     const cutgraph_detail::TrackSpacing spacing{options.track_width, law};
-    for (const auto& seed : cutgraph_detail::track_seeds(part, axes, graph, spacing, &cache))
+    for (const auto& seed : cutgraph_detail::track_seeds(part, corridors, spacing))
       layer.lay_from(seed.patch, seed.point);
+    corridors = corridors_now();
     // Sides the longest CUT-SEG's rails did not reach get tracks of their own (docs/cutgraph.md).
     for (int round = 0; round < 3; ++round) {
-      const auto gaps = cutgraph_detail::gap_seeds(part, axes, graph, spacing, &cache);
+      const auto gaps = cutgraph_detail::gap_seeds(part, corridors, spacing);
       if (gaps.empty()) break;
       for (const auto& seed : gaps) layer.lay_from(seed.patch, seed.point);
+      corridors = corridors_now();
     }
   }
-  graph.track_count = count();
+  graph.track_count = corridors.count;
   cutgraph_detail::extract_chains(part, cutgraph_detail::BoundaryIndex(part), layer, graph);
   for (const RailChain& c : graph.chains) {
     if (c.start == RailEnd::Lost || c.end == RailEnd::Lost) {
