@@ -254,7 +254,12 @@ std::vector<CorridorPiece> corridor_pieces_impl(const Part& part,
                                                 const std::vector<MedialAxis>& axes,
                                                 const CutGraph& graph,
                                                 OppositeCache* cache) {
-  Corridors c = find_corridors(part, axes, graph, cache);
+  return corridor_pieces_of(part, graph, find_corridors(part, axes, graph, cache));
+}
+
+std::vector<CorridorPiece> corridor_pieces_of(const Part& part,
+                                              const CutGraph& graph,
+                                              Corridors c) {
   // Where the rail at each break point meets the axis: from the rail segments, else the corner.
   std::map<LoopKey, Vec2> ma_at;
   const auto key = [&](PatchId p, std::uint32_t loop, double u) {

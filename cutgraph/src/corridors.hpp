@@ -55,6 +55,11 @@ std::vector<CorridorPiece> corridor_pieces_impl(const Part& part,
                                                 const CutGraph& graph,
                                                 OppositeCache* cache = nullptr);
 
+/// The same from corridors already found (find_corridors of `graph` as it is).
+std::vector<CorridorPiece> corridor_pieces_of(const Part& part,
+                                              const CutGraph& graph,
+                                              Corridors corridors);
+
 /// Where to start a track rail.
 struct TrackSeed {
   PatchId patch;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <deque>
 #include <map>
+#include <memory>
 #include <sstream>
 
 #include "boundary_index.hpp"
@@ -165,20 +166,33 @@ CutGraph build_cut_graph(const Part& part,
   if (tracks)
     track_width = [&](double radius) { return law ? law->width_for(radius, 1.0) : options.track_width; };
   cutgraph_detail::OppositeCache cache;
+  // The source rails: as the narrow corridors' last round laid them (the deletions made, the
+  // same rails and corridors that laying them again gives), else laid here.
+  cutgraph_detail::LaidSources laid;
   if (tracks && options.narrow_fraction > 0.0) {
     cutgraph_detail::remove_narrow_corridors(part, axes, track_width, options.narrow_fraction,
                                              options.narrow_one_per_round, suppressed,
                                              graph.deleted, graph.narrow_kept, graph.narrow_rounds,
-                                             cache);
+                                             cache, &laid);
   }
-  cutgraph_detail::RailLayer layer(part, axes, graph, track_width);
-  layer.suppress(suppressed);
-  layer.lay_sources();
+  if (!laid.graph) {
+    laid.graph = std::make_unique<CutGraph>();
+    laid.layer = std::make_unique<cutgraph_detail::RailLayer>(part, axes, *laid.graph, track_width);
+    laid.layer->suppress(suppressed);
+    laid.layer->lay_sources();
+    laid.corridors = cutgraph_detail::find_corridors(part, axes, *laid.graph, &cache);
+  }
+  CutGraph& g = *laid.graph;
+  cutgraph_detail::RailLayer& layer = *laid.layer;
+  g.round_arcs = std::move(graph.round_arcs);
+  g.deleted = std::move(graph.deleted);
+  g.narrow_kept = graph.narrow_kept;
+  g.narrow_rounds = graph.narrow_rounds;
   // The corridors of the graph as it is: searched again only after rails were laid (each
   // search maps every CUT-SEG across the axis; the tracks' seeds and the count share one).
-  const auto corridors_now = [&] { return cutgraph_detail::find_corridors(part, axes, graph, &cache); };
-  cutgraph_detail::Corridors corridors = corridors_now();
-  graph.corridor_count = corridors.count;
+  const auto corridors_now = [&] { return cutgraph_detail::find_corridors(part, axes, g, &cache); };
+  cutgraph_detail::Corridors corridors = std::move(laid.corridors);
+  g.corridor_count = corridors.count;
   if (tracks && options.lay_tracks) {
     const cutgraph_detail::TrackSpacing spacing{options.track_width, law};
     for (const auto& seed : cutgraph_detail::track_seeds(part, corridors, spacing))
@@ -192,8 +206,9 @@ CutGraph build_cut_graph(const Part& part,
       corridors = corridors_now();
     }
   }
-  graph.track_count = corridors.count;
-  cutgraph_detail::extract_chains(part, cutgraph_detail::BoundaryIndex(part), layer, graph);
+  g.track_count = corridors.count;
+  cutgraph_detail::extract_chains(part, cutgraph_detail::BoundaryIndex(part), layer, g);
+  graph = std::move(g);
   for (const RailChain& c : graph.chains) {
     if (c.start == RailEnd::Lost || c.end == RailEnd::Lost) {
       graph.problems.push_back("a rail chain through " + std::to_string(c.through.size()) +

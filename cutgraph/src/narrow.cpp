@@ -19,9 +19,8 @@ namespace {
 
 /// The state of one round: the source rails laid with some deleted, and their corridors.
 struct Round {
-  CutGraph graph;
+  LaidSources laid;
   std::vector<CorridorPiece> pieces;
-  std::vector<RailLayer::Link> links;
 };
 
 Round lay_round(const Part& part,
@@ -30,11 +29,12 @@ Round lay_round(const Part& part,
                 const std::vector<Vec3>& suppressed,
                 OppositeCache& cache) {
   Round r;
-  RailLayer layer(part, axes, r.graph, track_width);
-  layer.suppress(suppressed);
-  layer.lay_sources();
-  r.links = layer.links();
-  r.pieces = corridor_pieces_impl(part, axes, r.graph, &cache);
+  r.laid.graph = std::make_unique<CutGraph>();
+  r.laid.layer = std::make_unique<RailLayer>(part, axes, *r.laid.graph, track_width);
+  r.laid.layer->suppress(suppressed);
+  r.laid.layer->lay_sources();
+  r.laid.corridors = find_corridors(part, axes, *r.laid.graph, &cache);
+  r.pieces = corridor_pieces_of(part, *r.laid.graph, r.laid.corridors);
   return r;
 }
 
@@ -49,6 +49,11 @@ bool at_corner(const Part& part, const BoundaryIndex& index, const GCutVert& g) 
 
 }  // namespace
 
+LaidSources::LaidSources() = default;
+LaidSources::LaidSources(LaidSources&&) noexcept = default;
+LaidSources& LaidSources::operator=(LaidSources&&) noexcept = default;
+LaidSources::~LaidSources() = default;
+
 void remove_narrow_corridors(const Part& part,
                              const std::vector<MedialAxis>& axes,
                              const std::function<double(double)>& track_width,
@@ -58,7 +63,8 @@ void remove_narrow_corridors(const Part& part,
                              std::vector<DeletedRail>& deleted,
                              std::size_t& kept,
                              std::size_t& rounds,
-                             OppositeCache& cache) {
+                             OppositeCache& cache,
+                             LaidSources* last) {
   const BoundaryIndex index(part);
   // Patches that share an edge.
   std::vector<std::vector<std::uint32_t>> neighbours(part.patches.size());
@@ -79,11 +85,12 @@ void remove_narrow_corridors(const Part& part,
   // of 24 x 12 quads, whose rails run round it, the second (2 rounds; 48 by patches alone).
   // Bounded by the number of source points.
   for (std::size_t round = 0; round < 100000; ++round) {
-    const Round r = lay_round(part, axes, track_width, suppressed, cache);
-    const CutGraph& g = r.graph;
+    Round r = lay_round(part, axes, track_width, suppressed, cache);
+    const CutGraph& g = *r.laid.graph;
+    const std::vector<RailLayer::Link>& links = r.laid.layer->links();
     // Rails joined through boundary points (not through MA nodes or corners) form one set.
     UnionFind uf(g.gverts.size());
-    for (const auto& l : r.links) {
+    for (const auto& l : links) {
       if ((l.from & kMaNodeFlag) || (l.to & kMaNodeFlag)) continue;
       if (at_corner(part, index, g.gverts[l.from]) || at_corner(part, index, g.gverts[l.to]))
         continue;
@@ -178,7 +185,7 @@ void remove_narrow_corridors(const Part& part,
     {
       using BranchKey = std::tuple<LoopKey, long long>;
       std::vector<BranchKey> branch_key(g.gverts.size());
-      for (const auto& l : r.links) {
+      for (const auto& l : links) {
         if (!(l.to & kMaNodeFlag) || (l.from & kMaNodeFlag)) continue;
         const MaCutVert& mc = g.macuts[l.to & ~kMaNodeFlag];
         if (!mc.branch) continue;
@@ -202,7 +209,7 @@ void remove_narrow_corridors(const Part& part,
     for (const auto& [q, corridor] : order) narrow.push_back({width[corridor], corridor});
     // Patches per rail set; the corridors each rail set bounds (ascending).
     std::vector<std::vector<std::uint32_t>> set_patches(g.gverts.size());
-    for (const auto& l : r.links)
+    for (const auto& l : links)
       for (std::uint32_t end : {l.from, l.to})
         if (!(end & kMaNodeFlag)) set_patches[uf.find(end)].push_back(l.patch.value);
     for (auto& sp : set_patches) sort_unique(sp);
@@ -319,7 +326,10 @@ void remove_narrow_corridors(const Part& part,
         if (g.gverts[src].vertex) --rays_at_vertex[g.gverts[src].vertex->index()];
       removed = true;
     }
-    if (!removed) return;
+    if (!removed) {
+      if (last) *last = std::move(r.laid);
+      return;
+    }
     ++rounds;
   }
 }

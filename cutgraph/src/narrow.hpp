@@ -2,12 +2,27 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "corridors.hpp"
 #include "laytracks/cutgraph/cut_graph.hpp"
 
 namespace laytracks::cutgraph_detail {
+
+class RailLayer;
+
+/// The source rails as the last round of remove_narrow_corridors laid them (with every
+/// deletion made), and their corridors: what laying them again would give.
+struct LaidSources {
+  std::unique_ptr<CutGraph> graph;
+  std::unique_ptr<RailLayer> layer;  ///< lays into *graph
+  Corridors corridors;
+  LaidSources();
+  LaidSources(LaidSources&&) noexcept;
+  LaidSources& operator=(LaidSources&&) noexcept;
+  ~LaidSources();
+};
 
 /// Deletes source rails, round by round (in each, for every narrow corridor whose deletion is
 /// far from every narrower one's, by patches or by corridors; with `one_per_round`, for the
@@ -17,7 +32,7 @@ namespace laytracks::cutgraph_detail {
 /// whose only deletable rail is the last one at a concave vertex (counted in `kept`).
 /// `suppressed` receives the positions of the deleted source points, `deleted` a record each,
 /// `rounds` the count of rounds that deleted rails. `cache` keeps the points mapped across the
-/// axis from round to round.
+/// axis from round to round. `last`, when given, receives the last round's rails.
 void remove_narrow_corridors(const Part& part,
                              const std::vector<MedialAxis>& axes,
                              const std::function<double(double)>& track_width,
@@ -27,6 +42,7 @@ void remove_narrow_corridors(const Part& part,
                              std::vector<DeletedRail>& deleted,
                              std::size_t& kept,
                              std::size_t& rounds,
-                             OppositeCache& cache);
+                             OppositeCache& cache,
+                             LaidSources* last = nullptr);
 
 }  // namespace laytracks::cutgraph_detail
