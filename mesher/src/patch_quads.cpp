@@ -57,25 +57,37 @@ std::vector<bool> shared_nodes(const QuadMesh& mesh) {
 
 std::vector<bool> pinned_nodes(const QuadMesh& mesh) {
   std::vector<bool> pinned = shared_nodes(mesh);
-  std::vector<std::uint64_t> edges;
-  edges.reserve(4 * mesh.elements.size());
-  for (const MeshElement& e : mesh.elements) {
-    const std::size_t corners = e.is_quad() ? 4 : 3;
-    for (std::size_t k = 0; k < corners; ++k) {
-      const std::uint32_t v = e.nodes[k];
-      const auto [a, b] = std::minmax(v, e.nodes[(k + 1) % corners]);
-      edges.push_back(std::uint64_t{a} << 32 | b);
+  // Each element edge under its lower node (a counting sort: every node's list is short),
+  // then per node the edges to each higher node counted: one use is a boundary edge. It was
+  // a sort of all the edges, called before every smoothing and every slide (the torus of
+  // 48 x 16 triangle pairs: 4.4% of its time).
+  const std::size_t n = mesh.nodes.size();
+  std::vector<std::uint32_t> start(n + 1, 0);
+  const auto for_edges = [&](auto&& fn) {
+    for (const MeshElement& e : mesh.elements) {
+      const std::size_t corners = e.is_quad() ? 4 : 3;
+      for (std::size_t k = 0; k < corners; ++k) {
+        const auto [a, b] = std::minmax(e.nodes[k], e.nodes[(k + 1) % corners]);
+        fn(a, b);
+      }
     }
-  }
-  std::sort(edges.begin(), edges.end());
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i + 1;
-    while (j < edges.size() && edges[j] == edges[i]) ++j;
-    if (j - i == 1) {
-      pinned[static_cast<std::size_t>(edges[i] >> 32)] = true;
-      pinned[static_cast<std::size_t>(edges[i] & 0xffffffffu)] = true;
+  };
+  for_edges([&](std::uint32_t a, std::uint32_t) { ++start[a + 1]; });
+  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<std::uint32_t> higher(start.back()), fill(start.begin(), start.end() - 1);
+  for_edges([&](std::uint32_t a, std::uint32_t b) { higher[fill[a]++] = b; });
+  for (std::size_t a = 0; a < n; ++a) {
+    const auto first = higher.begin() + start[a], last = higher.begin() + start[a + 1];
+    std::sort(first, last);
+    for (auto i = first; i != last;) {
+      auto j = i + 1;
+      while (j != last && *j == *i) ++j;
+      if (j - i == 1) {
+        pinned[a] = true;
+        pinned[*i] = true;
+      }
+      i = j;
     }
-    i = j;
   }
   return pinned;
 }

@@ -118,19 +118,32 @@ std::size_t slide_boundary_nodes(const Part& part,
     // The worst min(scaled Jacobian, taper) of the node's quads with the node at `at`, their
     // worst scaled Jacobian (in each quad's patch frame, where every element runs
     // counter-clockwise), and how many of them have a taper of kSlideTaper or less.
+    // The quads round f in their patches' frames, f's corners to be set per position.
+    struct Around {
+      const Frame* frame;
+      std::array<Vec2, 4> p;
+      std::array<bool, 4> at_f;
+    };
+    std::vector<Around> quads_round;
+    for (std::uint32_t q : around[f]) {
+      Around a{&part.patches[mesh.elements[q].patch.index()].frame, {}, {}};
+      for (std::size_t i = 0; i < 4; ++i) {
+        const std::uint32_t v = mesh.elements[q].nodes[i];
+        a.at_f[i] = v == f;
+        if (!a.at_f[i]) a.p[i] = a.frame->to_2d(mesh.nodes[v]);
+      }
+      quads_round.push_back(a);
+    }
     const auto score = [&](Vec3 at, double& jacobian, int& tapered_quads) {
       double worst = std::numeric_limits<double>::infinity();
       jacobian = worst;
       tapered_quads = 0;
-      for (std::uint32_t q : around[f]) {
-        const Frame& fq = part.patches[mesh.elements[q].patch.index()].frame;
-        std::array<Vec2, 4> p;
-        for (std::size_t i = 0; i < 4; ++i) {
-          const std::uint32_t v = mesh.elements[q].nodes[i];
-          p[i] = fq.to_2d(v == f ? at : mesh.nodes[v]);
-        }
-        const double j = min_scaled_jacobian(p[0], p[1], p[2], p[3]);
-        const double t = quad_taper(p[0], p[1], p[2], p[3]);
+      for (Around& a : quads_round) {
+        const Vec2 here = a.frame->to_2d(at);
+        for (std::size_t i = 0; i < 4; ++i)
+          if (a.at_f[i]) a.p[i] = here;
+        const auto& p = a.p;
+        const auto [t, j] = quad_taper_jacobian(p[0], p[1], p[2], p[3]);
         jacobian = std::min(jacobian, j);
         worst = std::min({worst, j, t});
         if (t <= kSlideTaper) ++tapered_quads;
