@@ -496,6 +496,19 @@ class QuadBuilder {
   /// The patch's boundary pieces and rails. `keep` (per rail segment): lay only these, and
   /// drop nothing more; without it every rail is laid and the narrow-fan, narrow-wedge and
   /// dangling rules drop some.
+  /// The rail segments whose CUT-VERT is in patch pid, ascending (bucketed once: a scan of
+  /// all of them per patch was quadratic in a shell of many facets).
+  const std::vector<std::uint32_t>& segments_in(PatchId pid) {
+    if (segments_by_patch_.empty()) {
+      segments_by_patch_.resize(part_.patches.size());
+      for (std::size_t si = 0; si < graph_.segments.size(); ++si)
+        segments_by_patch_[graph_.cuts[graph_.segments[si].cut.index()].patch.index()].push_back(
+            static_cast<std::uint32_t>(si));
+    }
+    return segments_by_patch_[pid.index()];
+  }
+  std::vector<std::vector<std::uint32_t>> segments_by_patch_;
+
   void build_patch_rails(PatchId pid, const std::vector<bool>* keep) {
     const Patch& patch = part_.patches[pid.index()];
     PatchGraph& g = patches_[pid.index()];
@@ -560,10 +573,9 @@ class QuadBuilder {
     std::vector<double> ma_radius;  // per ma_nodes entry
     const double tol = kSamePointRel * part_.size;
     std::map<std::pair<std::uint32_t, std::uint32_t>, bool> seen;
-    for (std::size_t si = 0; si < graph_.segments.size(); ++si) {
+    for (const std::uint32_t si : segments_in(pid)) {
       const RailSegment& seg = graph_.segments[si];
       const CutVert& cut = graph_.cuts[seg.cut.index()];
-      if (cut.patch != pid) continue;
       if (keep && !(*keep)[si]) continue;
       const MaCutVert& mc = graph_.macuts[seg.ma.index()];
       const auto cit = by_mesh.find(gcut_node_[cut.g.index()]);
