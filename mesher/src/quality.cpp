@@ -9,6 +9,7 @@
 #include <string>
 
 #include "laytracks/mesher/check.hpp"
+#include "patch_quads.hpp"
 
 namespace laytracks {
 namespace {
@@ -210,46 +211,63 @@ QualitySummary summarize(const Part& part, const QuadMesh& mesh) {
   QualitySummary out;
   out.elements = mesh.elements.size();
   out.nodes = mesh.nodes.size();
+  // Each quad measured on its own (on all cores, in blocks), then gathered in element order.
+  struct Measured {
+    bool quad = false, ok = false;
+    QuadQuality q{};
+    double size = 0.0;
+  };
+  std::vector<Measured> measured(mesh.elements.size());
+  constexpr std::size_t kBlock = 1024;
+  mesher_detail::parallel_for((mesh.elements.size() + kBlock - 1) / kBlock, [&](std::size_t b) {
+    const std::size_t last = std::min(mesh.elements.size(), (b + 1) * kBlock);
+    for (std::size_t ei = b * kBlock; ei < last; ++ei) {
+      const MeshElement& e = mesh.elements[ei];
+      Measured& m = measured[ei];
+      m.quad = e.is_quad();
+      if (!m.quad) continue;
+      bool ok = e.patch.index() < part.patches.size();
+      std::array<Vec3, 4> corners{};
+      for (std::size_t i = 0; i < 4 && ok; ++i) {
+        ok = e.nodes[i] < mesh.nodes.size() && is_finite(mesh.nodes[e.nodes[i]]);
+        if (ok) corners[i] = mesh.nodes[e.nodes[i]];
+      }
+      m.ok = ok;
+      if (!ok) continue;
+      const Vec3 normal = part.patches[e.patch.index()].frame.n;
+      m.q = measure_quad(corners, normal);
+      const double area = 0.5 * std::abs(dot(normal, cross(corners[2] - corners[0],
+                                                           corners[3] - corners[1])));
+      m.size = std::sqrt(area);
+    }
+  });
   std::array<std::vector<double>, 8> values;
   std::size_t bad_angle = 0;
-  // Sizes and edges of the measured quads, for the size grading.
+  // Sizes of the measured quads, for the size grading.
   std::vector<double> size_of(mesh.elements.size(), 0.0);
-  std::vector<std::pair<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t>> edge_use;
   for (std::size_t ei = 0; ei < mesh.elements.size(); ++ei) {
-    const MeshElement& e = mesh.elements[ei];
-    if (!e.is_quad()) {
+    const Measured& m = measured[ei];
+    if (!m.quad) {
       ++out.triangles;
       ++out.invalid_elements;
       continue;
     }
     ++out.quads;
-    bool ok = e.patch.index() < part.patches.size();
-    std::array<Vec3, 4> corners{};
-    for (std::size_t i = 0; i < 4 && ok; ++i) {
-      ok = e.nodes[i] < mesh.nodes.size() && is_finite(mesh.nodes[e.nodes[i]]);
-      if (ok) corners[i] = mesh.nodes[e.nodes[i]];
-    }
-    if (!ok) {
+    if (!m.ok) {
       ++out.invalid_elements;
       continue;
     }
-    const Vec3 normal = part.patches[e.patch.index()].frame.n;
-    const QuadQuality q = measure_quad(corners, normal);
+    const QuadQuality& q = m.q;
     ++out.measured;
-    const double area = 0.5 * std::abs(dot(normal, cross(corners[2] - corners[0],
-                                                         corners[3] - corners[1])));
-    size_of[ei] = std::sqrt(area);
+    size_of[ei] = m.size;
     out.min_size = out.measured == 1 ? size_of[ei] : std::min(out.min_size, size_of[ei]);
     out.max_size = std::max(out.max_size, size_of[ei]);
-    for (std::size_t k = 0; k < 4; ++k)
-      edge_use.push_back({std::minmax(e.nodes[k], e.nodes[(k + 1) % 4]),
-                          static_cast<std::uint32_t>(ei)});
     if (q.inverted) ++out.invalid_elements;
     if (q.min_angle_deg < QualityThresholds::kMinAngleDeg ||
         q.max_angle_deg > QualityThresholds::kMaxAngleDeg) {
       ++bad_angle;
     }
-    for (std::size_t m = 0; m < 8; ++m) values[m].push_back(value_of(q, m));
+    for (std::size_t m2 = 0; m2 < 8; ++m2) values[m2].push_back(value_of(q, m2));
   }
   for (std::size_t m = 0; m < 8; ++m)
     out.measures[m] = summarize_measure(measure_defs()[m], values[m]);
@@ -266,12 +284,35 @@ QualitySummary summarize(const Part& part, const QuadMesh& mesh) {
     }
     out.fine_coarse_ratio = fine / coarse;
   }
-  std::sort(edge_use.begin(), edge_use.end());
+  // Neighbours across each edge of the measured quads: the edges under their lower node (a
+  // counting sort), each node's short list sorted by (higher node, element), and consecutive
+  // uses of one edge compared, as a sort of all the edges would pair them.
+  const std::size_t n = mesh.nodes.size();
+  std::vector<std::uint32_t> start(n + 1, 0);
+  const auto for_edges = [&](auto&& fn) {
+    for (std::size_t ei = 0; ei < mesh.elements.size(); ++ei) {
+      if (!(measured[ei].quad && measured[ei].ok)) continue;
+      const auto& x = mesh.elements[ei].nodes;
+      for (std::size_t k = 0; k < 4; ++k) {
+        const auto [a, b] = std::minmax(x[k], x[(k + 1) % 4]);
+        fn(a, b, static_cast<std::uint32_t>(ei));
+      }
+    }
+  };
+  for_edges([&](std::uint32_t a, std::uint32_t, std::uint32_t) { ++start[a + 1]; });
+  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> uses(start.back());  // (higher, element)
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for_edges([&](std::uint32_t a, std::uint32_t b, std::uint32_t ei) { uses[fill[a]++] = {b, ei}; });
   std::vector<double> ratios;
-  for (std::size_t i = 0; i + 1 < edge_use.size(); ++i) {
-    if (edge_use[i].first != edge_use[i + 1].first) continue;
-    const double a = size_of[edge_use[i].second], b = size_of[edge_use[i + 1].second];
-    if (a > 0.0 && b > 0.0) ratios.push_back(std::max(a, b) / std::min(a, b));
+  for (std::size_t a = 0; a < n; ++a) {
+    const auto first = uses.begin() + start[a], last = uses.begin() + start[a + 1];
+    std::sort(first, last);
+    for (auto i = first; i != last && i + 1 != last; ++i) {
+      if (i->first != (i + 1)->first) continue;
+      const double x = size_of[i->second], y = size_of[(i + 1)->second];
+      if (x > 0.0 && y > 0.0) ratios.push_back(std::max(x, y) / std::min(x, y));
+    }
   }
   if (!ratios.empty()) {
     std::sort(ratios.begin(), ratios.end());
