@@ -493,9 +493,6 @@ class QuadBuilder {
   }
 
   // ---- 2-3. the coarse graph and its faces ------------------------------------------------
-  /// The patch's boundary pieces and rails. `keep` (per rail segment): lay only these, and
-  /// drop nothing more; without it every rail is laid and the narrow-fan, narrow-wedge and
-  /// dangling rules drop some.
   /// The rail segments whose CUT-VERT is in patch pid, ascending (bucketed once: a scan of
   /// all of them per patch was quadratic in a shell of many facets).
   const std::vector<std::uint32_t>& segments_in(PatchId pid) {
@@ -509,6 +506,9 @@ class QuadBuilder {
   }
   std::vector<std::vector<std::uint32_t>> segments_by_patch_;
 
+  /// The patch's boundary pieces and rails. `keep` (per rail segment): lay only these, and
+  /// drop nothing more; without it every rail is laid and the narrow-fan, narrow-wedge and
+  /// dangling rules drop some.
   void build_patch_rails(PatchId pid, const std::vector<bool>* keep) {
     const Patch& patch = part_.patches[pid.index()];
     PatchGraph& g = patches_[pid.index()];
