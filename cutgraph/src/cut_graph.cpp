@@ -7,7 +7,6 @@
 #include <cmath>
 #include <deque>
 #include <map>
-#include <memory>
 #include <sstream>
 
 #include "boundary_index.hpp"
@@ -175,13 +174,7 @@ CutGraph build_cut_graph(const Part& part,
                                              graph.deleted, graph.narrow_kept, graph.narrow_rounds,
                                              cache, &laid);
   }
-  if (!laid.graph) {
-    laid.graph = std::make_unique<CutGraph>();
-    laid.layer = std::make_unique<cutgraph_detail::RailLayer>(part, axes, *laid.graph, track_width);
-    laid.layer->suppress(suppressed);
-    laid.layer->lay_sources();
-    laid.corridors = cutgraph_detail::find_corridors(part, axes, *laid.graph, &cache);
-  }
+  if (!laid.graph) laid = cutgraph_detail::lay_sources(part, axes, track_width, suppressed, cache);
   CutGraph& g = *laid.graph;
   cutgraph_detail::RailLayer& layer = *laid.layer;
   g.round_arcs = std::move(graph.round_arcs);

@@ -29,11 +29,7 @@ Round lay_round(const Part& part,
                 const std::vector<Vec3>& suppressed,
                 OppositeCache& cache) {
   Round r;
-  r.laid.graph = std::make_unique<CutGraph>();
-  r.laid.layer = std::make_unique<RailLayer>(part, axes, *r.laid.graph, track_width);
-  r.laid.layer->suppress(suppressed);
-  r.laid.layer->lay_sources();
-  r.laid.corridors = find_corridors(part, axes, *r.laid.graph, &cache);
+  r.laid = lay_sources(part, axes, track_width, suppressed, cache);
   r.pieces = corridor_pieces_of(part, *r.laid.graph, r.laid.corridors);
   return r;
 }
@@ -53,6 +49,20 @@ LaidSources::LaidSources() = default;
 LaidSources::LaidSources(LaidSources&&) noexcept = default;
 LaidSources& LaidSources::operator=(LaidSources&&) noexcept = default;
 LaidSources::~LaidSources() = default;
+
+LaidSources lay_sources(const Part& part,
+                        const std::vector<MedialAxis>& axes,
+                        const std::function<double(double)>& track_width,
+                        const std::vector<Vec3>& suppressed,
+                        OppositeCache& cache) {
+  LaidSources laid;
+  laid.graph = std::make_unique<CutGraph>();
+  laid.layer = std::make_unique<RailLayer>(part, axes, *laid.graph, track_width);
+  laid.layer->suppress(suppressed);
+  laid.layer->lay_sources();
+  laid.corridors = find_corridors(part, axes, *laid.graph, &cache);
+  return laid;
+}
 
 void remove_narrow_corridors(const Part& part,
                              const std::vector<MedialAxis>& axes,

@@ -24,6 +24,13 @@ struct LaidSources {
   ~LaidSources();
 };
 
+/// Lays the source rails with the points in `suppressed` left out, and finds their corridors.
+LaidSources lay_sources(const Part& part,
+                        const std::vector<MedialAxis>& axes,
+                        const std::function<double(double)>& track_width,
+                        const std::vector<Vec3>& suppressed,
+                        OppositeCache& cache);
+
 /// Deletes source rails, round by round (in each, for every narrow corridor whose deletion is
 /// far from every narrower one's, by patches or by corridors; with `one_per_round`, for the
 /// narrowest only: the reference the rounds must agree with; narrow.cpp), until no corridor

@@ -530,7 +530,7 @@ class PatchRefill {
     // while they are kept, and of those the one with the fewest tapered quads (the first on
     // ties): rings of trapezoids round a pole go out further than its first ring.
     const auto take = [&](std::optional<Plan> plan) {
-      if (plan && (!t.plan || plan->gain > t.plan->gain)) t.plan = std::move(plan);
+      keep_most_gain(t.plan, std::move(plan));
       return t.plan.has_value();
     };
     for (int ring = 0; ring < kRegridRings && (!t.plan || t.plan->round); ++ring) {
@@ -919,6 +919,11 @@ class PatchRefill {
     return judged_grid("regrid", std::move(*fill), cavity, cycle, old, false, log, header);
   }
 
+  /// `plan` in `best`'s place when it untapers more (the first kept on ties).
+  static void keep_most_gain(std::optional<Plan>& best, std::optional<Plan> plan) {
+    if (plan && (!best || plan->gain > best->gain)) best = std::move(plan);
+  }
+
   /// A round cavity (every cycle node in two of its quads; regrid_plan): O-grids of the layers
   /// whose count best matches the cavity's and of kRoundLayers - 1 more, each with its core's
   /// first corner under the cycle's first node or n / 8 nodes on; of those kept, the one with
@@ -945,7 +950,7 @@ class PatchRefill {
             "ogrid " + std::to_string(layers + more) + " " + std::to_string(start) + " ";
         std::optional<Plan> plan =
             judged_grid(kind, std::move(*fill), cavity, cycle, old, false, log, header);
-        if (plan && (!best || plan->gain > best->gain)) best = std::move(plan);
+        keep_most_gain(best, std::move(plan));
       }
     if (best) best->round = true;
     return best;

@@ -55,36 +55,44 @@ std::vector<bool> shared_nodes(const QuadMesh& mesh) {
   return shared;
 }
 
-std::vector<bool> pinned_nodes(const QuadMesh& mesh) {
-  std::vector<bool> pinned = shared_nodes(mesh);
-  // Each element edge under its lower node (a counting sort: every node's list is short),
-  // then per node the edges to each higher node counted: one use is a boundary edge. It was
-  // a sort of all the edges, called before every smoothing and every slide (the torus of
-  // 48 x 16 triangle pairs: 4.4% of its time).
+EdgesByNode edges_by_lower_node(const QuadMesh& mesh,
+                                const std::function<bool(std::size_t)>& counted) {
   const std::size_t n = mesh.nodes.size();
-  std::vector<std::uint32_t> start(n + 1, 0);
+  EdgesByNode out;
+  out.start.assign(n + 1, 0);
   const auto for_edges = [&](auto&& fn) {
-    for (const MeshElement& e : mesh.elements) {
+    for (std::size_t ei = 0; ei < mesh.elements.size(); ++ei) {
+      if (!counted(ei)) continue;
+      const MeshElement& e = mesh.elements[ei];
       const std::size_t corners = e.is_quad() ? 4 : 3;
       for (std::size_t k = 0; k < corners; ++k) {
         const auto [a, b] = std::minmax(e.nodes[k], e.nodes[(k + 1) % corners]);
-        fn(a, b);
+        fn(a, b, static_cast<std::uint32_t>(ei));
       }
     }
   };
-  for_edges([&](std::uint32_t a, std::uint32_t) { ++start[a + 1]; });
-  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-  std::vector<std::uint32_t> higher(start.back()), fill(start.begin(), start.end() - 1);
-  for_edges([&](std::uint32_t a, std::uint32_t b) { higher[fill[a]++] = b; });
-  for (std::size_t a = 0; a < n; ++a) {
-    const auto first = higher.begin() + start[a], last = higher.begin() + start[a + 1];
-    std::sort(first, last);
+  for_edges([&](std::uint32_t a, std::uint32_t, std::uint32_t) { ++out.start[a + 1]; });
+  for (std::size_t v = 0; v < n; ++v) out.start[v + 1] += out.start[v];
+  out.uses.resize(out.start.back());
+  std::vector<std::uint32_t> fill(out.start.begin(), out.start.end() - 1);
+  for_edges([&](std::uint32_t a, std::uint32_t b, std::uint32_t ei) { out.uses[fill[a]++] = {b, ei}; });
+  for (std::size_t a = 0; a < n; ++a)
+    std::sort(out.uses.begin() + out.start[a], out.uses.begin() + out.start[a + 1]);
+  return out;
+}
+
+std::vector<bool> pinned_nodes(const QuadMesh& mesh) {
+  std::vector<bool> pinned = shared_nodes(mesh);
+  // An edge that one element uses is on a boundary.
+  const EdgesByNode edges = edges_by_lower_node(mesh, [](std::size_t) { return true; });
+  for (std::size_t a = 0; a + 1 < edges.start.size(); ++a) {
+    const auto first = edges.uses.begin() + edges.start[a], last = edges.uses.begin() + edges.start[a + 1];
     for (auto i = first; i != last;) {
       auto j = i + 1;
-      while (j != last && *j == *i) ++j;
+      while (j != last && j->first == i->first) ++j;
       if (j - i == 1) {
         pinned[a] = true;
-        pinned[*i] = true;
+        pinned[i->first] = true;
       }
       i = j;
     }

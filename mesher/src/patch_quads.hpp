@@ -19,6 +19,17 @@ std::vector<bool> shared_nodes(const QuadMesh& mesh);
 /// nodes on a mesh edge that only one element uses (a free edge, or a patch's boundary).
 std::vector<bool> pinned_nodes(const QuadMesh& mesh);
 
+/// The elements' edges, each under its lower node: node a's list (from start[a] to
+/// start[a + 1] of `uses`) holds (b, element) for every edge (a, b), b > a, of the elements
+/// `counted` takes, sorted. A counting sort: every node's list is short, where one sort of all
+/// the mesh's edges was a tenth of a large shell's late smoothing.
+struct EdgesByNode {
+  std::vector<std::uint32_t> start;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> uses;
+};
+EdgesByNode edges_by_lower_node(const QuadMesh& mesh,
+                                const std::function<bool(std::size_t)>& counted);
+
 /// The nodes at B-Rep vertices (within the check's kOnBrep x the part's size of one).
 std::vector<bool> vertex_nodes(const Part& part, const QuadMesh& mesh);
 

@@ -284,30 +284,13 @@ QualitySummary summarize(const Part& part, const QuadMesh& mesh) {
     }
     out.fine_coarse_ratio = fine / coarse;
   }
-  // Neighbours across each edge of the measured quads: the edges under their lower node (a
-  // counting sort), each node's short list sorted by (higher node, element), and consecutive
-  // uses of one edge compared, as a sort of all the edges would pair them.
-  const std::size_t n = mesh.nodes.size();
-  std::vector<std::uint32_t> start(n + 1, 0);
-  const auto for_edges = [&](auto&& fn) {
-    for (std::size_t ei = 0; ei < mesh.elements.size(); ++ei) {
-      if (!(measured[ei].quad && measured[ei].ok)) continue;
-      const auto& x = mesh.elements[ei].nodes;
-      for (std::size_t k = 0; k < 4; ++k) {
-        const auto [a, b] = std::minmax(x[k], x[(k + 1) % 4]);
-        fn(a, b, static_cast<std::uint32_t>(ei));
-      }
-    }
-  };
-  for_edges([&](std::uint32_t a, std::uint32_t, std::uint32_t) { ++start[a + 1]; });
-  for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> uses(start.back());  // (higher, element)
-  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-  for_edges([&](std::uint32_t a, std::uint32_t b, std::uint32_t ei) { uses[fill[a]++] = {b, ei}; });
+  // Neighbours across each edge of the measured quads: consecutive uses of one edge compared,
+  // in (edge, element) order, as a sort of all the edges would pair them.
+  const mesher_detail::EdgesByNode edges = mesher_detail::edges_by_lower_node(
+      mesh, [&](std::size_t ei) { return measured[ei].quad && measured[ei].ok; });
   std::vector<double> ratios;
-  for (std::size_t a = 0; a < n; ++a) {
-    const auto first = uses.begin() + start[a], last = uses.begin() + start[a + 1];
-    std::sort(first, last);
+  for (std::size_t a = 0; a + 1 < edges.start.size(); ++a) {
+    const auto first = edges.uses.begin() + edges.start[a], last = edges.uses.begin() + edges.start[a + 1];
     for (auto i = first; i != last && i + 1 != last; ++i) {
       if (i->first != (i + 1)->first) continue;
       const double x = size_of[i->second], y = size_of[(i + 1)->second];
