@@ -636,8 +636,72 @@ class QuadBuilder {
     drop_crowded_feet(pid, g);
     drop_narrow_fans(g, false);
     drop_narrow_fans(g, true);
+    drop_twin_rails(g);
     drop_dangling_rails(g);
     drop_disk_rails(pid, g);
+  }
+
+  /// Twin rails: two rails that cross the patch between the same two boundary nodes (their
+  /// feet were one node on each side, breaks closer than kTinyPiece x h: on a needle facet two
+  /// chains 0.008 h apart) bound a face of four rail edges and no boundary, and the MA point of
+  /// one lies on the wrong side of the other's feet: the face beyond it is a dart. Of such
+  /// twins (MA nodes with exactly two rails, to the same two feet, nothing inside the four
+  /// edges between them) the one whose MA node is nearest the midpoint of its feet stays, the
+  /// others' rails go (the chains go on in the other patches, to the same nodes). Distances
+  /// decide, then the position in the patch frame, never the order of the graph's rails,
+  /// which follows the pose; counted as twin_rails.
+  void drop_twin_rails(PatchGraph& g) {
+    std::vector<std::vector<std::uint32_t>> rails_of(g.nodes.size());
+    for (std::uint32_t i = 0; i < g.edges.size(); ++i)
+      if (g.edges[i].rail) rails_of[g.edges[i].b].push_back(i);
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> by_feet;
+    for (std::uint32_t m = 0; m < g.nodes.size(); ++m) {
+      if (rails_of[m].size() != 2) continue;
+      std::uint32_t a = g.edges[rails_of[m][0]].a, b = g.edges[rails_of[m][1]].a;
+      if (a == b) continue;
+      if (a > b) std::swap(a, b);
+      by_feet[{a, b}].push_back(m);
+    }
+    std::vector<bool> drop(g.edges.size(), false);
+    const double tie = kFootTie * part_.size;
+    for (const auto& [feet, twins] : by_feet) {
+      if (twins.size() < 2) continue;
+      const Vec2 pa = g.nodes[feet.first].p, pb = g.nodes[feet.second].p;
+      const Vec2 mid = 0.5 * (pa + pb);
+      // The keeper: nearest the feet's midpoint; on a tie the lower, then leftmost, in the
+      // patch frame (which turns with the part).
+      std::uint32_t keep = twins[0];
+      for (std::uint32_t m : twins) {
+        const double dm = distance(g.nodes[m].p, mid), dk = distance(g.nodes[keep].p, mid);
+        const Vec2 pm = g.nodes[m].p, pk = g.nodes[keep].p;
+        if (dm < dk - tie || (dm <= dk + tie && (pm.y < pk.y || (pm.y == pk.y && pm.x < pk.x))))
+          keep = m;
+      }
+      for (std::uint32_t m : twins) {
+        if (m == keep) continue;
+        // Nothing of the graph inside the four rail edges between the two.
+        const std::array<Vec2, 4> quad = {pa, g.nodes[keep].p, pb, g.nodes[m].p};
+        bool empty = true;
+        for (std::uint32_t o = 0; o < g.nodes.size() && empty; ++o) {
+          if (o == feet.first || o == feet.second || o == keep || o == m) continue;
+          bool in = false;
+          const Vec2 q = g.nodes[o].p;
+          for (std::size_t i = 0, j = 3; i < 4; j = i++) {
+            if ((quad[i].y > q.y) != (quad[j].y > q.y) &&
+                q.x < quad[j].x + (quad[i].x - quad[j].x) * (q.y - quad[j].y) / (quad[i].y - quad[j].y))
+              in = !in;
+          }
+          empty = !in;
+        }
+        if (!empty) continue;
+        for (std::uint32_t r : rails_of[m]) drop[r] = true;
+        ++result_.stats.twin_rails;
+      }
+    }
+    std::size_t k = 0;
+    g.edges.erase(
+        std::remove_if(g.edges.begin(), g.edges.end(), [&](const CEdge&) { return drop[k++]; }),
+        g.edges.end());
   }
 
   /// Fan clusters: where the boundary curves round a point of the axis (an arc a little wider

@@ -1393,6 +1393,18 @@ TEST_CASE("a face with a needle's tip keeps a quad as thin as the tip, in every 
                    [](const MeshPartResult& r) { return r.stats.needle_tip_faces > 0; });
 }
 
+TEST_CASE("two rails between the same two feet of a needle facet become one, in every pose",
+          "[mesh][poses]") {
+  // tube48_tri.json: an open tube of 48 columns, each two triangles of 1.31 x 30 (tips of 2.5
+  // degrees), at mesh.size 4. Two rail chains cross each needle 0.008 h apart; their feet are
+  // one node on each side (kTinyPiece), so the two rails joined the same two nodes, and the MA
+  // point of one lay on the tip's side of the other's feet: the tip's face was a dart, split
+  // into quads of half the tip's angle (0.022). One rail of such twins is dropped: the tip is
+  // one quad, as sharp as the facet, sin(2.5 degrees) = 0.0436.
+  check_test_parts({{"tube48_tri.json", 0.043}},
+                   [](const MeshPartResult& r) { return r.stats.twin_rails > 0; });
+}
+
 TEST_CASE("an outline folded back within a hair of itself is refused as input, naming the place",
           "[mesh]") {
   // fold_blob.json (blob_002 of fuzz seed 38039): vertex 60 of its outline lies 1.5e-6 (6e-9 x
