@@ -132,6 +132,7 @@ int run_mesh(const std::vector<std::string>& argv) {
     doc["narrow_fans_dropped"] = r.stats.narrow_fans;
     doc["crowded_feet_dropped"] = r.stats.crowded_feet;
     doc["twin_rails_dropped"] = r.stats.twin_rails;
+    doc["unfolded_darts"] = r.stats.unfolded_darts;
     doc["graded_rails"] = r.stats.graded_rails;
     doc["outward_rails_dropped"] = r.stats.outward_rails;
     doc["slit_rails_dropped"] = r.stats.slit_rails;

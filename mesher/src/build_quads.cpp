@@ -279,6 +279,7 @@ class QuadBuilder {
       }
     }
     fix_parity();
+    for (std::size_t p = 0; p < np; ++p) unfold_darts(patches_[p]);
     // Split boundary pieces (mesh_part, after an UnfilledFace): two more edges each, which
     // keeps every face at the piece even, in every patch of its edge.
     for (const PieceRef& s : split_pieces_)
@@ -1494,6 +1495,87 @@ class QuadBuilder {
         }
       }
       ++result_.stats.loop_bridges;
+    }
+  }
+
+  /// Darts at sharp tips: a face of four single edges, two boundary edges at a tip T and two
+  /// rails of one MA node X (its only rails), where X lies on T's side of the chord between the
+  /// rails' feet A and B: the face is a dart, and a template splits the tip between quads. A
+  /// rail that leaned onto another chain's point (kCoincideRel: the foot moves by up to 0.15
+  /// of the radius) does that at a tip under about 8 degrees, where the axis point lies only
+  /// d sin^2(a/2) beyond the chord. X moves along the line from T to where T, A, X and B are
+  /// concyclic (as a kite with right angles at A and B, the rails without leaning), when the
+  /// face is then convex, X stays inside the face across the rails, and its rails cross none
+  /// of that face's edges. Counted as unfolded_darts.
+  void unfold_darts(PatchGraph& g) {
+    const double tol = kSamePointRel * part_.size;
+    std::vector<std::uint32_t> rails_at(g.nodes.size(), 0);
+    for (const CEdge& e : g.edges)
+      if (e.rail) ++rails_at[e.b];
+    auto tail = [&](Half h) { return h.reverse ? g.edges[h.edge].b : g.edges[h.edge].a; };
+    for (std::uint32_t f = 0; f < g.faces.size(); ++f) {
+      const std::vector<Half>& face = g.faces[f];
+      if (face.size() != 4) continue;
+      // X: the MA node whose two rails are consecutive in the face; T opposite.
+      std::size_t k = 4;
+      for (std::size_t i = 0; i < 4; ++i) {
+        const CEdge& in = g.edges[face[(i + 3) % 4].edge];
+        const CEdge& out = g.edges[face[i].edge];
+        const std::uint32_t v = tail(face[i]);
+        if (in.rail && out.rail && g.nodes[v].ma && rails_at[v] == 2 && in.count == 1 &&
+            out.count == 1 && !g.edges[face[(i + 1) % 4].edge].rail &&
+            !g.edges[face[(i + 2) % 4].edge].rail && g.edges[face[(i + 1) % 4].edge].count == 1 &&
+            g.edges[face[(i + 2) % 4].edge].count == 1)
+          k = i;
+      }
+      if (k == 4) continue;
+      const std::uint32_t x = tail(face[k]), b = tail(face[(k + 1) % 4]),
+                          t = tail(face[(k + 2) % 4]), a = tail(face[(k + 3) % 4]);
+      const Vec2 X = g.nodes[x].p, B = g.nodes[b].p, T = g.nodes[t].p, A = g.nodes[a].p;
+      // The face runs counter-clockwise: X is reflex when the turn A -> X -> B is clockwise.
+      if (cross(X - A, B - X) >= 0.0) continue;
+      // Y: where the line from T through X meets the circle through T, A and B again. T, A, Y, B
+      // are then concyclic, so the corner at Y is 180 degrees less the tip's: the kite as the
+      // rails would make it without leaning (right angles at the feet), and no worse a corner
+      // at Y than the tip's own.
+      const Vec2 u = X - T;
+      const double lu = norm(u);
+      const double d = 2.0 * cross(A - T, B - T);
+      if (lu <= tol || std::abs(d) <= tol * tol) continue;
+      const Vec2 ta = A - T, tb = B - T;
+      const Vec2 o{(tb.y * dot(ta, ta) - ta.y * dot(tb, tb)) / d,
+                   (ta.x * dot(tb, tb) - tb.x * dot(ta, ta)) / d};  // circumcentre - T
+      const Vec2 dir = (1.0 / lu) * u;
+      const Vec2 Y = T + (2.0 * dot(o, dir)) * dir;
+      const std::array<Vec2, 4> kite = {Y, B, T, A};
+      bool convex = true;
+      for (std::size_t i = 0; i < 4; ++i)
+        convex = convex && cross(kite[(i + 1) % 4] - kite[i], kite[(i + 2) % 4] - kite[(i + 1) % 4]) >
+                               tol * tol;
+      if (!convex) continue;
+      // The face across the rails (on the other side of A-X and X-B) must keep Y inside and
+      // no edge of it may cross A-Y or Y-B.
+      const CEdge& rx = g.edges[face[k].edge];
+      const std::uint32_t other = rx.face[face[k].reverse ? 0 : 1];
+      if (other == kNone || other == f) continue;
+      bool clear = true;
+      bool inside = false;
+      for (const Half& h : g.faces[other]) {
+        const CEdge& e = g.edges[h.edge];
+        const Vec2 P = g.nodes[e.a].p, Q = g.nodes[e.b].p;
+        if ((P.y > Y.y) != (Q.y > Y.y) && Y.x < P.x + (Q.x - P.x) * (Y.y - P.y) / (Q.y - P.y))
+          inside = !inside;
+        if (e.a == x || e.b == x) continue;
+        for (const auto& [s0, s1] : {std::pair<Vec2, Vec2>{A, Y}, std::pair<Vec2, Vec2>{Y, B}}) {
+          if (e.a == a || e.b == a || e.a == b || e.b == b) continue;
+          const double d1 = cross(s1 - s0, P - s0), d2 = cross(s1 - s0, Q - s0);
+          const double d3 = cross(Q - P, s0 - P), d4 = cross(Q - P, s1 - P);
+          if (d1 * d2 <= 0.0 && d3 * d4 <= 0.0) clear = false;
+        }
+      }
+      if (!inside || !clear) continue;
+      g.nodes[x].p = Y;
+      ++result_.stats.unfolded_darts;
     }
   }
 

@@ -1405,6 +1405,18 @@ TEST_CASE("two rails between the same two feet of a needle facet become one, in 
                    [](const MeshPartResult& r) { return r.stats.twin_rails > 0; });
 }
 
+TEST_CASE("a rail that leaned onto a needle's tip side has its axis point moved beyond, in every pose",
+          "[mesh][poses]") {
+  // cyl48_tri_rimfan.json: a cylinder of 48 sides whose caps are fanned from a rim vertex
+  // (slivers with tips of 3.75 degrees), at mesh.size 2. Where a rail leaned onto another
+  // chain's point (kCoincideRel), its MA point lay on the tip's side of its feet: the tip's
+  // face was a dart, split into quads of half the tip (0.031). unfold_darts moves the MA node
+  // to where the face is a kite inscribed in a circle: the worst corner is the side facets'
+  // tips, sin(2.5 degrees) = 0.0436.
+  check_test_parts({{"cyl48_tri_rimfan.json", 0.043}},
+                   [](const MeshPartResult& r) { return r.stats.unfolded_darts > 0; });
+}
+
 TEST_CASE("an outline folded back within a hair of itself is refused as input, naming the place",
           "[mesh]") {
   // fold_blob.json (blob_002 of fuzz seed 38039): vertex 60 of its outline lies 1.5e-6 (6e-9 x

@@ -83,6 +83,7 @@ struct QuadStats {
   std::size_t shared_faces = 0;
   std::size_t narrow_fans = 0;     ///< rails dropped: under 10 degrees from another at a node
   std::size_t crowded_feet = 0;    ///< rails dropped: feet too close on a round hole
+  std::size_t unfolded_darts = 0;  ///< MA nodes moved beyond their feet's chord at a tip
   std::size_t twin_rails = 0;      ///< rails dropped: a second rail between the same two feet
   std::size_t graded_rails = 0;    ///< rails from a round hole with graded steps (graded_rail)
   std::size_t dangling_rails = 0;  ///< rail segments left out: their MA end met no other rail
