@@ -164,6 +164,14 @@ constexpr double kFanClusterArc = 0.35;
 constexpr double kFanMinRadius = 2.0;
 /// Two MA points of a patch closer than this x the part size are one node.
 constexpr double kSamePointRel = 1e-9;
+/// unfold_darts: a corner is taken as turning (reflex, or convex in the kite) only when the
+/// sine of its turn is beyond this: a straight one reads alike in every pose.
+constexpr double kDartTurn = 1e-9;
+
+/// Whether the edge pq crosses the ray from `at` towards +x (the even-odd rule's test).
+bool crosses_ray(Vec2 p, Vec2 q, Vec2 at) {
+  return (p.y > at.y) != (q.y > at.y) && at.x < p.x + (q.x - p.x) * (at.y - p.y) / (q.y - p.y);
+}
 
 /// Nodes of one B-Rep edge: breaks (its vertices and its G-CUT-VERTs, by parameter) and the
 /// pieces between consecutive breaks.
@@ -686,12 +694,8 @@ class QuadBuilder {
         for (std::uint32_t o = 0; o < g.nodes.size() && empty; ++o) {
           if (o == feet.first || o == feet.second || o == keep || o == m) continue;
           bool in = false;
-          const Vec2 q = g.nodes[o].p;
-          for (std::size_t i = 0, j = 3; i < 4; j = i++) {
-            if ((quad[i].y > q.y) != (quad[j].y > q.y) &&
-                q.x < quad[j].x + (quad[i].x - quad[j].x) * (q.y - quad[j].y) / (quad[i].y - quad[j].y))
-              in = !in;
-          }
+          for (std::size_t i = 0; i < 4; ++i)
+            in = in != crosses_ray(quad[i], quad[(i + 1) % 4], g.nodes[o].p);
           empty = !in;
         }
         if (!empty) continue;
@@ -1533,7 +1537,7 @@ class QuadBuilder {
                           t = tail(face[(k + 2) % 4]), a = tail(face[(k + 3) % 4]);
       const Vec2 X = g.nodes[x].p, B = g.nodes[b].p, T = g.nodes[t].p, A = g.nodes[a].p;
       // The face runs counter-clockwise: X is reflex when the turn A -> X -> B is clockwise.
-      if (cross(X - A, B - X) >= 0.0) continue;
+      if (cross(X - A, B - X) >= -kDartTurn * norm(X - A) * norm(B - X)) continue;
       // Y: where the line from T through X meets the circle through T, A and B again. T, A, Y, B
       // are then concyclic, so the corner at Y is 180 degrees less the tip's: the kite as the
       // rails would make it without leaning (right angles at the feet), and no worse a corner
@@ -1549,9 +1553,10 @@ class QuadBuilder {
       const Vec2 Y = T + (2.0 * dot(o, dir)) * dir;
       const std::array<Vec2, 4> kite = {Y, B, T, A};
       bool convex = true;
-      for (std::size_t i = 0; i < 4; ++i)
-        convex = convex && cross(kite[(i + 1) % 4] - kite[i], kite[(i + 2) % 4] - kite[(i + 1) % 4]) >
-                               tol * tol;
+      for (std::size_t i = 0; i < 4; ++i) {
+        const Vec2 e0 = kite[(i + 1) % 4] - kite[i], e1 = kite[(i + 2) % 4] - kite[(i + 1) % 4];
+        convex = convex && cross(e0, e1) > kDartTurn * norm(e0) * norm(e1);
+      }
       if (!convex) continue;
       // The face across the rails (on the other side of A-X and X-B) must keep Y inside and
       // no edge of it may cross A-Y or Y-B.
@@ -1563,8 +1568,7 @@ class QuadBuilder {
       for (const Half& h : g.faces[other]) {
         const CEdge& e = g.edges[h.edge];
         const Vec2 P = g.nodes[e.a].p, Q = g.nodes[e.b].p;
-        if ((P.y > Y.y) != (Q.y > Y.y) && Y.x < P.x + (Q.x - P.x) * (Y.y - P.y) / (Q.y - P.y))
-          inside = !inside;
+        inside = inside != crosses_ray(P, Q, Y);
         if (e.a == x || e.b == x) continue;
         for (const auto& [s0, s1] : {std::pair<Vec2, Vec2>{A, Y}, std::pair<Vec2, Vec2>{Y, B}}) {
           if (e.a == a || e.b == a || e.a == b || e.b == b) continue;
