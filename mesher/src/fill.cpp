@@ -1017,14 +1017,20 @@ double ccw_angle(Vec2 from, Vec2 to) {
 /// element (fuzz seed 34034, extreme_006) read a reflex cut's piece as four sides when turned
 /// and as none as given: 136 quads against 213.
 constexpr double kCornerAngle = 149.5 * kPi / 180.0;
+/// A polygon with a node more reflex than this has no corner reading. Off round values for
+/// the same reason (200 degrees until session 46): the chords of an arc turning by 20 degrees
+/// meet at 200 degrees exactly, above or below it by the pose's rounding, and a cut piece of
+/// fuzz seed 93093's arcs_021 (a bulged outline) was a grid of 0.86 as given and none turned:
+/// 340 quads against 347.
+constexpr double kCornerReflexMax = 200.5 * kPi / 180.0;
 
 /// The corners of a polygon (interior angle below kCornerAngle), in order; none when a node
-/// is reflex beyond 200 degrees. How corner_strip and fill_sided read a face.
+/// is reflex beyond kCornerReflexMax. How corner_strip and fill_sided read a face.
 std::optional<std::vector<std::uint32_t>> polygon_corners(const std::vector<Vec2>& poly) {
   std::vector<std::uint32_t> corners;
   for (std::uint32_t k = 0; k < poly.size(); ++k) {
     const double a = interior_angle(poly, k);
-    if (a > 200.0 * kPi / 180.0) return std::nullopt;
+    if (a > kCornerReflexMax) return std::nullopt;
     if (a < kCornerAngle) corners.push_back(k);
   }
   return corners;

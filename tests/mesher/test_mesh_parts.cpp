@@ -1417,6 +1417,15 @@ TEST_CASE("a rail that leaned onto a needle's tip side has its axis point moved 
                    [](const MeshPartResult& r) { return r.stats.unfolded_darts > 0; });
 }
 
+TEST_CASE("a piece with corners of exactly 200 degrees reads alike in every pose", "[mesh][poses]") {
+  // arcs_bulged_200deg.json (fuzz seed 93093's arcs_021): bulged arcs whose chords turn by 20
+  // degrees. A piece of the cut template had two nodes of 200 degrees exactly, the limit of a
+  // corner reading (polygon_corners) until session 46: below it by rounding as given (a grid
+  // of 0.86) and above it turned, where the cut gave up on the face and a split was taken:
+  // 340 quads against 347. The limit is now 200.5 degrees (kCornerReflexMax).
+  check_test_parts({{"arcs_bulged_200deg.json", 0.5}}, [](const MeshPartResult&) { return true; });
+}
+
 TEST_CASE("an outline folded back within a hair of itself is refused as input, naming the place",
           "[mesh]") {
   // fold_blob.json (blob_002 of fuzz seed 38039): vertex 60 of its outline lies 1.5e-6 (6e-9 x
