@@ -319,14 +319,16 @@ double shortest_norm(const std::vector<Vec2>& vs);
 double interior_angle(const std::vector<Vec2>& poly, std::size_t i);
 
 /// The corners of the counter-clockwise polygon `poly` (interior angle below 149.5 degrees),
-/// in order; none when a node is reflex beyond 200 degrees. How corner_strip, fill_sided and
+/// in order; none when a node is reflex beyond 200.5 degrees. How corner_strip, fill_sided and
 /// the re-fill's whole patches (refill_cavities) read a polygon.
 std::optional<std::vector<std::uint32_t>> polygon_corners(const std::vector<Vec2>& poly);
 
 /// A round polygon: every interior angle between kRoundMin and kRoundMax. The O-grid's faces
-/// (fill_ogrid), and the loops whose rails drop_disk_rails drops when they nearly meet.
-constexpr double kRoundMin = 120.0 * kPi / 180.0;
-constexpr double kRoundMax = 200.0 * kPi / 180.0;
+/// (fill_ogrid), and the loops whose rails drop_disk_rails drops when they nearly meet. Off
+/// round values (120 and 200 until session 46): a regular hexagon's corners are 120 degrees
+/// exactly, and an arc's 20-degree chords meet at 200, read either side by the pose's rounding.
+constexpr double kRoundMin = 119.5 * kPi / 180.0;
+constexpr double kRoundMax = 200.5 * kPi / 180.0;
 /// Whether the counter-clockwise polygon `poly` is round.
 bool is_round(const std::vector<Vec2>& poly);
 
