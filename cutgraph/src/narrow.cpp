@@ -17,23 +17,6 @@
 namespace laytracks::cutgraph_detail {
 namespace {
 
-/// The state of one round: the source rails laid with some deleted, and their corridors.
-struct Round {
-  LaidSources laid;
-  std::vector<CorridorPiece> pieces;
-};
-
-Round lay_round(const Part& part,
-                const std::vector<MedialAxis>& axes,
-                const std::function<double(double)>& track_width,
-                const std::vector<Vec3>& suppressed,
-                OppositeCache& cache) {
-  Round r;
-  r.laid = lay_sources(part, axes, track_width, suppressed, cache);
-  r.pieces = corridor_pieces_of(part, *r.laid.graph, r.laid.corridors);
-  return r;
-}
-
 /// True when G-CUT-VERT g sits at a corner that is not smooth (rails end there).
 bool at_corner(const Part& part, const BoundaryIndex& index, const GCutVert& g) {
   if (!g.vertex) return false;
@@ -95,9 +78,11 @@ void remove_narrow_corridors(const Part& part,
   // of 24 x 12 quads, whose rails run round it, the second (2 rounds; 48 by patches alone).
   // Bounded by the number of source points.
   for (std::size_t round = 0; round < 100000; ++round) {
-    Round r = lay_round(part, axes, track_width, suppressed, cache);
-    const CutGraph& g = *r.laid.graph;
-    const std::vector<RailLayer::Link>& links = r.laid.layer->links();
+    // This round's source rails (with the deletions so far) and their corridors.
+    LaidSources laid = lay_sources(part, axes, track_width, suppressed, cache);
+    const std::vector<CorridorPiece> pieces = corridor_pieces_of(part, *laid.graph, laid.corridors);
+    const CutGraph& g = *laid.graph;
+    const std::vector<RailLayer::Link>& links = laid.layer->links();
     // Rails joined through boundary points (not through MA nodes or corners) form one set.
     UnionFind uf(g.gverts.size());
     for (const auto& l : links) {
@@ -124,13 +109,13 @@ void remove_narrow_corridors(const Part& part,
     };
     // Corridors (dense ids): width (longest CUT-SEG) and bounding break points.
     std::size_t corridors = 0;
-    for (const CorridorPiece& c : r.pieces) corridors = std::max(corridors, c.corridor + 1);
+    for (const CorridorPiece& c : pieces) corridors = std::max(corridors, c.corridor + 1);
     std::vector<double> width(corridors, 0.0);
     std::vector<double> radius(corridors, 0.0);  // the longest rail bounding the corridor
     std::vector<std::vector<std::uint32_t>> bounds(corridors);  // ascending, no repeats
     std::vector<bool> small_feature(corridors, false);
     std::vector<std::vector<std::uint32_t>> corridor_patches(corridors);  // ascending
-    for (const CorridorPiece& c : r.pieces) {
+    for (const CorridorPiece& c : pieces) {
       width[c.corridor] = std::max(width[c.corridor], c.length);
       const auto& poly = part.patches[c.patch.index()].polygon.loops[c.loop];
       const auto at = [&](double u) {
@@ -337,7 +322,7 @@ void remove_narrow_corridors(const Part& part,
       removed = true;
     }
     if (!removed) {
-      if (last) *last = std::move(r.laid);
+      if (last) *last = std::move(laid);
       return;
     }
     ++rounds;

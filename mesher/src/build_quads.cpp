@@ -168,10 +168,6 @@ constexpr double kSamePointRel = 1e-9;
 /// sine of its turn is beyond this: a straight one reads alike in every pose.
 constexpr double kDartTurn = 1e-9;
 
-/// Whether the edge pq crosses the ray from `at` towards +x (the even-odd rule's test).
-bool crosses_ray(Vec2 p, Vec2 q, Vec2 at) {
-  return (p.y > at.y) != (q.y > at.y) && at.x < p.x + (q.x - p.x) * (at.y - p.y) / (q.y - p.y);
-}
 
 /// Nodes of one B-Rep edge: breaks (its vertices and its G-CUT-VERTs, by parameter) and the
 /// pieces between consecutive breaks.
@@ -212,6 +208,13 @@ struct PatchGraph {
   std::map<std::uint32_t, Vec2> boundary_2d;  ///< mesh node -> position in the patch frame
   std::map<std::uint32_t, BoundaryPoint> foot;  ///< adaptive: coarse node of a rail's foot
 };
+
+/// Erases the edges marked in `drop` (one flag per edge, in order).
+void erase_marked(std::vector<CEdge>& edges, const std::vector<bool>& drop) {
+  std::size_t k = 0;
+  edges.erase(std::remove_if(edges.begin(), edges.end(), [&](const CEdge&) { return drop[k++]; }),
+              edges.end());
+}
 
 class QuadBuilder {
  public:
@@ -689,24 +692,18 @@ class QuadBuilder {
       for (std::uint32_t m : twins) {
         if (m == keep) continue;
         // Nothing of the graph inside the four rail edges between the two.
-        const std::array<Vec2, 4> quad = {pa, g.nodes[keep].p, pb, g.nodes[m].p};
+        const std::vector<Vec2> quad = {pa, g.nodes[keep].p, pb, g.nodes[m].p};
         bool empty = true;
         for (std::uint32_t o = 0; o < g.nodes.size() && empty; ++o) {
           if (o == feet.first || o == feet.second || o == keep || o == m) continue;
-          bool in = false;
-          for (std::size_t i = 0; i < 4; ++i)
-            in = in != crosses_ray(quad[i], quad[(i + 1) % 4], g.nodes[o].p);
-          empty = !in;
+          empty = !mesher_detail::inside_polygon(g.nodes[o].p, quad);
         }
         if (!empty) continue;
         for (std::uint32_t r : rails_of[m]) drop[r] = true;
         ++result_.stats.twin_rails;
       }
     }
-    std::size_t k = 0;
-    g.edges.erase(
-        std::remove_if(g.edges.begin(), g.edges.end(), [&](const CEdge&) { return drop[k++]; }),
-        g.edges.end());
+    erase_marked(g.edges, drop);
   }
 
   /// Fan clusters: where the boundary curves round a point of the axis (an arc a little wider
@@ -1096,10 +1093,7 @@ class QuadBuilder {
         rails.erase(rails.begin() + static_cast<std::ptrdiff_t>(gone));
       }
     }
-    std::size_t k = 0;
-    g.edges.erase(std::remove_if(g.edges.begin(), g.edges.end(),
-                                 [&](const CEdge&) { return drop[k++]; }),
-                  g.edges.end());
+    erase_marked(g.edges, drop);
   }
 
   /// Round holes (docs/medial.md, "Round holes"): rails land on a concave arc (a hole's, or a
@@ -1204,10 +1198,7 @@ class QuadBuilder {
         }
       }
     }
-    std::size_t k = 0;
-    g.edges.erase(
-        std::remove_if(g.edges.begin(), g.edges.end(), [&](const CEdge&) { return drop[k++]; }),
-        g.edges.end());
+    erase_marked(g.edges, drop);
   }
 
   /// Per node of a patch graph: the mean mesh-edge length of the boundary pieces at it (0 for
@@ -1563,20 +1554,17 @@ class QuadBuilder {
       const CEdge& rx = g.edges[face[k].edge];
       const std::uint32_t other = rx.face[face[k].reverse ? 0 : 1];
       if (other == kNone || other == f) continue;
+      std::vector<Vec2> across;
       bool clear = true;
-      bool inside = false;
       for (const Half& h : g.faces[other]) {
         const CEdge& e = g.edges[h.edge];
+        across.push_back(g.nodes[h.reverse ? e.b : e.a].p);
+        if (e.a == x || e.b == x || e.a == a || e.b == a || e.a == b || e.b == b) continue;
         const Vec2 P = g.nodes[e.a].p, Q = g.nodes[e.b].p;
-        inside = inside != crosses_ray(P, Q, Y);
-        if (e.a == x || e.b == x) continue;
-        for (const auto& [s0, s1] : {std::pair<Vec2, Vec2>{A, Y}, std::pair<Vec2, Vec2>{Y, B}}) {
-          if (e.a == a || e.b == a || e.a == b || e.b == b) continue;
-          const double d1 = cross(s1 - s0, P - s0), d2 = cross(s1 - s0, Q - s0);
-          const double d3 = cross(Q - P, s0 - P), d4 = cross(Q - P, s1 - P);
-          if (d1 * d2 <= 0.0 && d3 * d4 <= 0.0) clear = false;
-        }
+        clear = clear && !mesher_detail::segments_meet(A, Y, P, Q) &&
+                !mesher_detail::segments_meet(Y, B, P, Q);
       }
+      const bool inside = mesher_detail::inside_polygon(Y, across);
       if (!inside || !clear) continue;
       g.nodes[x].p = Y;
       ++result_.stats.unfolded_darts;

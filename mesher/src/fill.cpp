@@ -561,8 +561,6 @@ bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t) {
                        side_of(r, t, q));
 }
 
-namespace {
-
 bool inside_polygon(Vec2 x, const std::vector<Vec2>& poly) {
   bool in = false;
   for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
@@ -572,6 +570,8 @@ bool inside_polygon(Vec2 x, const std::vector<Vec2>& poly) {
   }
   return in;
 }
+
+namespace {
 
 /// The triangulation of a simple counter-clockwise polygon that maximises the smallest
 /// `score(a, b, c)` of its triangles (dynamic programming over diagonals, O(m^3)). Indices

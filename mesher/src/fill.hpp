@@ -128,6 +128,9 @@ TaperJacobian quad_taper_jacobian(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
 /// collinear ones only when they overlap, within rounding).
 bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t);
 
+/// Whether x lies inside the polygon `poly` (the even-odd rule).
+bool inside_polygon(Vec2 x, const std::vector<Vec2>& poly);
+
 /// Meshes one face: the first template that applies and gives quads whose scaled Jacobian is
 /// above kAcceptJacobian wins; otherwise the best valid one. Throws InternalError (with `where`
 /// in the message) when no template gives valid quads.

@@ -246,20 +246,20 @@ QualitySummary summarize(const Part& part, const QuadMesh& mesh) {
   // Sizes of the measured quads, for the size grading.
   std::vector<double> size_of(mesh.elements.size(), 0.0);
   for (std::size_t ei = 0; ei < mesh.elements.size(); ++ei) {
-    const Measured& m = measured[ei];
-    if (!m.quad) {
+    const Measured& got = measured[ei];
+    if (!got.quad) {
       ++out.triangles;
       ++out.invalid_elements;
       continue;
     }
     ++out.quads;
-    if (!m.ok) {
+    if (!got.ok) {
       ++out.invalid_elements;
       continue;
     }
-    const QuadQuality& q = m.q;
+    const QuadQuality& q = got.q;
     ++out.measured;
-    size_of[ei] = m.size;
+    size_of[ei] = got.size;
     out.min_size = out.measured == 1 ? size_of[ei] : std::min(out.min_size, size_of[ei]);
     out.max_size = std::max(out.max_size, size_of[ei]);
     if (q.inverted) ++out.invalid_elements;
@@ -267,7 +267,7 @@ QualitySummary summarize(const Part& part, const QuadMesh& mesh) {
         q.max_angle_deg > QualityThresholds::kMaxAngleDeg) {
       ++bad_angle;
     }
-    for (std::size_t m2 = 0; m2 < 8; ++m2) values[m2].push_back(value_of(q, m2));
+    for (std::size_t m = 0; m < 8; ++m) values[m].push_back(value_of(q, m));
   }
   for (std::size_t m = 0; m < 8; ++m)
     out.measures[m] = summarize_measure(measure_defs()[m], values[m]);
