@@ -112,9 +112,21 @@ GCutId GCutRegistry::nearest_if(EdgeId e, double t, const std::function<bool(GCu
   const double len = distance(part_.vertices[edge.a.index()].position,
                               part_.vertices[edge.b.index()].position);
   GCutId found;
-  double best = INFINITY;
+  double best = INFINITY, best_at = INFINITY;
+  // Two points as near to t within kNearestTieRel x the edge's length (either side of a target
+  // halfway between them, as a rail laid into a nearly square rectangle halfway between its
+  // two branch points' feet) are a tie, and the one nearer the edge's first vertex wins: the
+  // edge's own direction, the same in every pose. Before, rounding chose (shells of folded
+  // strips, seed 47048: 201 quads as given, 192 turned).
   auto consider = [&](double at, GCutId id) {
-    if (accept(id) && std::abs(at - t) * len < best) best = std::abs(at - t) * len, found = id;
+    if (!accept(id)) return;
+    const double d = std::abs(at - t) * len;
+    const double tie = kNearestTieRel * len;
+    if (d < best - tie || (d <= best + tie && at < best_at)) {
+      best = d;
+      best_at = at;
+      found = id;
+    }
   };
   if (e.index() < on_edge_.size())
     for (const auto& [at, id] : on_edge_[e.index()]) consider(at, id);

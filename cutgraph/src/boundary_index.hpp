@@ -68,6 +68,9 @@ class GCutRegistry {
   /// The existing G-CUT-VERT of edge e (its inside points, or its ends where they are ones)
   /// nearest to parameter t; invalid when the edge has none. `gap`: the distance to it.
   GCutId nearest(EdgeId e, double t, double* gap) const;
+  /// Distances to t within this x the edge's length of each other tie in nearest and
+  /// nearest_if: the point nearer the edge's first vertex wins.
+  static constexpr double kNearestTieRel = 1e-9;
   /// As nearest, among the G-CUT-VERTs `accept` takes.
   GCutId nearest_if(EdgeId e, double t, const std::function<bool(GCutId)>& accept,
                     double* gap) const;

@@ -1426,6 +1426,17 @@ TEST_CASE("a piece with corners of exactly 200 degrees reads alike in every pose
   check_test_parts({{"arcs_bulged_200deg.json", 0.5}}, [](const MeshPartResult&) { return true; });
 }
 
+TEST_CASE("a rail laid halfway between two feet lands on the same one in every pose", "[mesh][poses]") {
+  // folded_square_tie.json (random shells, seed 47048's folded_019): an open strip folded into
+  // four rectangles. A rail from the first one's branch points runs across the fold into a
+  // nearly square rectangle exactly halfway between the feet of its two branch points, and
+  // leans onto one of them (kCoincideRel): the nearer by rounding until session 47, so the
+  // narrow corridor between the two lost the rail on one side as given and on the other
+  // turned (201 against 192 quads). Ties within 1e-9 of the edge's length now go to the point
+  // nearer the edge's first vertex (GCutRegistry::kNearestTieRel).
+  check_test_parts({{"folded_square_tie.json", 0.8}}, [](const MeshPartResult&) { return true; });
+}
+
 TEST_CASE("an outline folded back within a hair of itself is refused as input, naming the place",
           "[mesh]") {
   // fold_blob.json (blob_002 of fuzz seed 38039): vertex 60 of its outline lies 1.5e-6 (6e-9 x
