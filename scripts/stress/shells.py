@@ -84,6 +84,10 @@ def prism(rnd, hole=False):
     n = rnd.randint(5, 40)
     outer = star(rnd, n, 10.0, rnd.uniform(0.0, 0.5))
     n = len(outer)
+    # the centre inside (every angular gap below 180 degrees): the fan cap and the hole need it
+    if n < 3 or any(outer[k][0] * outer[(k + 1) % n][1] - outer[(k + 1) % n][0] * outer[k][1] <= 0
+                    for k in range(n)):
+        return None
     h = rnd.uniform(1.0, 25.0)
     v = [(x, y, 0.0) for x, y in outer] + [(x, y, h) for x, y in outer]
     f = []
