@@ -118,10 +118,10 @@ GCutId GCutRegistry::nearest_if(EdgeId e, double t, const std::function<bool(GCu
   // two branch points' feet) are a tie, and the one nearer the edge's first vertex wins: the
   // edge's own direction, the same in every pose. Before, rounding chose (shells of folded
   // strips, seed 47048: 201 quads as given, 192 turned).
+  const double tie = kNearestTieRel * len;
   auto consider = [&](double at, GCutId id) {
     if (!accept(id)) return;
     const double d = std::abs(at - t) * len;
-    const double tie = kNearestTieRel * len;
     if (d < best - tie || (d <= best + tie && at < best_at)) {
       best = d;
       best_at = at;

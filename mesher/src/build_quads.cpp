@@ -168,7 +168,6 @@ constexpr double kSamePointRel = 1e-9;
 /// sine of its turn is beyond this: a straight one reads alike in every pose.
 constexpr double kDartTurn = 1e-9;
 
-
 /// Nodes of one B-Rep edge: breaks (its vertices and its G-CUT-VERTs, by parameter) and the
 /// pieces between consecutive breaks.
 struct EdgeNodes {
@@ -1512,15 +1511,14 @@ class QuadBuilder {
       const std::vector<Half>& face = g.faces[f];
       if (face.size() != 4) continue;
       // X: the MA node whose two rails are consecutive in the face; T opposite.
+      // Every edge single; edges i and i - 1 rails, i + 1 and i + 2 not.
+      const auto edge = [&](std::size_t i) -> const CEdge& { return g.edges[face[i % 4].edge]; };
       std::size_t k = 4;
       for (std::size_t i = 0; i < 4; ++i) {
-        const CEdge& in = g.edges[face[(i + 3) % 4].edge];
-        const CEdge& out = g.edges[face[i].edge];
         const std::uint32_t v = tail(face[i]);
-        if (in.rail && out.rail && g.nodes[v].ma && rails_at[v] == 2 && in.count == 1 &&
-            out.count == 1 && !g.edges[face[(i + 1) % 4].edge].rail &&
-            !g.edges[face[(i + 2) % 4].edge].rail && g.edges[face[(i + 1) % 4].edge].count == 1 &&
-            g.edges[face[(i + 2) % 4].edge].count == 1)
+        if (edge(i + 3).rail && edge(i).rail && !edge(i + 1).rail && !edge(i + 2).rail &&
+            g.nodes[v].ma && rails_at[v] == 2 &&
+            std::all_of(face.begin(), face.end(), [&](Half h) { return g.edges[h.edge].count == 1; }))
           k = i;
       }
       if (k == 4) continue;
@@ -1558,7 +1556,7 @@ class QuadBuilder {
       bool clear = true;
       for (const Half& h : g.faces[other]) {
         const CEdge& e = g.edges[h.edge];
-        across.push_back(g.nodes[h.reverse ? e.b : e.a].p);
+        across.push_back(g.nodes[tail(h)].p);
         if (e.a == x || e.b == x || e.a == a || e.b == a || e.a == b || e.b == b) continue;
         const Vec2 P = g.nodes[e.a].p, Q = g.nodes[e.b].p;
         clear = clear && !mesher_detail::segments_meet(A, Y, P, Q) &&

@@ -12,7 +12,13 @@ LIST.tsv is what run-fuzz.py reads (path, family, seed, name, 0), so
 `run-fuzz.py LIST.tsv RESULTS.jsonl` meshes each in three poses and lists every refusal and
 every quad count that differs between poses. Not a test.
 """
-import json, math, os, random, sys
+import importlib.util, json, math, os, random, sys
+
+# fuzz.py's 2D helpers (orient, seg_dist2); its generator runs only as a script.
+_spec = importlib.util.spec_from_file_location(
+    "fuzz", os.path.join(os.path.dirname(os.path.abspath(__file__)), "fuzz.py"))
+fuzz = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(fuzz)
 
 def hull(pts):
     # incremental 3D convex hull; faces as ccw-from-outside index triples
@@ -59,12 +65,9 @@ def star(rnd, n, r, noise):
         out.append((a, r * (1 + rnd.uniform(-noise, noise))))
     return [(rr*math.cos(a), rr*math.sin(a)) for a, rr in out]
 
-def area2(poly):
-    return sum(poly[i][0]*poly[(i+1) % len(poly)][1] - poly[(i+1) % len(poly)][0]*poly[i][1] for i in range(len(poly)))
-
 def earclip(poly):
     idx = list(range(len(poly))); tris = []
-    def cr(o, a, b): return (a[0]-o[0])*(b[1]-o[1]) - (a[1]-o[1])*(b[0]-o[0])
+    cr = fuzz.orient
     def inside(p, a, b, c): return cr(a, b, p) > 0 and cr(b, c, p) > 0 and cr(c, a, p) > 0
     guard = 0
     while len(idx) > 3 and guard < 100000:
@@ -163,12 +166,10 @@ def folded(rnd):
         L = rnd.uniform(3, 20)
         pts.append((pts[-1][0] + L*math.cos(ang), pts[-1][1] + L*math.sin(ang)))
     # reject self-approaching profiles (crude): segments not adjacent keep 2 apart
-    def sd(p, a, b):
-        dx, dy = b[0]-a[0], b[1]-a[1]; t = max(0, min(1, ((p[0]-a[0])*dx + (p[1]-a[1])*dy) / (dx*dx+dy*dy)))
-        return math.hypot(p[0]-a[0]-t*dx, p[1]-a[1]-t*dy)
     for i in range(len(pts)):
         for j in range(len(pts) - 1):
-            if abs(i - j) > 1 and i != j + 1 and sd(pts[i], pts[j], pts[j+1]) < 2.0: return None
+            if abs(i - j) > 1 and i != j + 1 and fuzz.seg_dist2(pts[i], pts[j], pts[j+1]) < 4.0:
+                return None
     v = [(x, 0.0, z) for x, z in pts] + [(x, D, z) for x, z in pts]
     n = len(pts)
     f = [[i, i+1, n+i+1, n+i] for i in range(n - 1)]
