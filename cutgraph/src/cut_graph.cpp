@@ -170,9 +170,9 @@ CutGraph build_cut_graph(const Part& part,
   cutgraph_detail::LaidSources laid;
   if (tracks && options.narrow_fraction > 0.0) {
     cutgraph_detail::remove_narrow_corridors(part, axes, track_width, options.narrow_fraction,
-                                             options.narrow_one_per_round, suppressed,
+                                             options.narrow_one_per_round, options.drop_crowded_rails, suppressed,
                                              graph.deleted, graph.narrow_kept, graph.narrow_rounds,
-                                             cache, &laid);
+                                             graph.crowded_rails, cache, &laid);
   }
   if (!laid.graph) laid = cutgraph_detail::lay_sources(part, axes, track_width, suppressed, cache);
   CutGraph& g = *laid.graph;
@@ -181,6 +181,7 @@ CutGraph build_cut_graph(const Part& part,
   g.deleted = std::move(graph.deleted);
   g.narrow_kept = graph.narrow_kept;
   g.narrow_rounds = graph.narrow_rounds;
+  g.crowded_rails = graph.crowded_rails;
   // The corridors of the graph as it is: searched again only after rails were laid (each
   // search maps every CUT-SEG across the axis; the tracks' seeds and the count share one).
   const auto corridors_now = [&] { return cutgraph_detail::find_corridors(part, axes, g, &cache); };

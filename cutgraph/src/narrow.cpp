@@ -26,6 +26,95 @@ bool at_corner(const Part& part, const BoundaryIndex& index, const GCutVert& g) 
   return false;
 }
 
+/// Crowded rails (docs/cutgraph.md, "Crowded rails"): a source rail set that reaches at least
+/// kCrowdMinPoints points inside B-Rep edges (it runs across patches) and has, at
+/// kCrowdShare of them or more, a point of a rail set kept before it on the same edge closer
+/// than narrow_fraction x the track width is not laid. Sets are judged in the order of their
+/// first source along the boundary (`place`, the same in every pose); the sets that may not go
+/// (too short, no source, the last ray of a concave vertex) are kept first. On a shell of
+/// thin triangles every facet's branch point sends rails that drift across the facets beside
+/// it (a wedge's two-way mapping keeps the distance from its tip, and its sides differ in
+/// length), and they come to lie a fraction of a track apart over many facets, in one corridor
+/// too long and too uneven for its longest CUT-SEG to find narrow.
+constexpr std::size_t kCrowdMinPoints = 5;
+constexpr double kCrowdShare = 0.75;
+
+/// The source points of the crowded rail sets of the graph, in order (see above).
+/// `rays_at_vertex`: the source rails at each concave vertex (a copy: the sets dropped here
+/// take theirs away, and the last may not go).
+std::vector<std::uint32_t> crowded_sources(const Part& part,
+                                           const CutGraph& g,
+                                           UnionFind& uf,
+                                           const std::vector<std::vector<std::uint32_t>>& sources_of,
+                                           std::vector<std::size_t> rays_at_vertex,
+                                           const std::vector<LoopKey>& place,
+                                           const std::function<double(double)>& track_width,
+                                           double narrow_fraction) {
+  const std::size_t n = g.gverts.size();
+  // The radius at each G-CUT-VERT: its longest rail segment.
+  std::vector<double> radius(n, 0.0);
+  for (const RailSegment& seg : g.segments) {
+    const CutVert& c = g.cuts[seg.cut.index()];
+    double& r = radius[c.g.index()];
+    r = std::max(r, distance(c.position, g.macuts[seg.ma.index()].point.position));
+  }
+  // Each set's points inside edges.
+  std::vector<std::vector<std::uint32_t>> points(n);
+  for (std::uint32_t i = 0; i < n; ++i)
+    if (!g.gverts[i].vertex) points[uf.find(i)].push_back(i);
+  std::vector<std::uint32_t> candidates;
+  std::vector<std::vector<std::uint32_t>> kept_on_edge(part.edges.size());
+  const auto keep = [&](std::uint32_t set) {
+    for (std::uint32_t i : points[set]) kept_on_edge[g.gverts[i].edge.index()].push_back(i);
+  };
+  const auto last_at_concave = [&](std::uint32_t set) {
+    return std::any_of(sources_of[set].begin(), sources_of[set].end(), [&](std::uint32_t src) {
+      return g.gverts[src].vertex && rays_at_vertex[g.gverts[src].vertex->index()] <= 1;
+    });
+  };
+  for (std::uint32_t set = 0; set < n; ++set) {
+    if (uf.find(set) != set) continue;
+    if (sources_of[set].empty() || last_at_concave(set) || points[set].size() < kCrowdMinPoints)
+      keep(set);
+    else
+      candidates.push_back(set);
+  }
+  const auto first_place = [&](std::uint32_t set) {
+    LoopKey k{UINT32_MAX, UINT32_MAX, LLONG_MAX};
+    for (std::uint32_t src : sources_of[set]) k = std::min(k, place[src]);
+    return k;
+  };
+  std::vector<std::pair<LoopKey, std::uint32_t>> order;
+  for (std::uint32_t set : candidates) order.emplace_back(first_place(set), set);
+  std::sort(order.begin(), order.end());
+  // Distances on the grid of the widths (1e-9 x the part's size), as everywhere here.
+  const double grain = 1e-9 * part.size;
+  const auto quantum = [&](double x) { return std::llround(x / grain); };
+  std::vector<std::uint32_t> crowded;
+  for (const auto& [key, set] : order) {
+    std::size_t near = 0;
+    for (std::uint32_t i : points[set]) {
+      const long long reach = quantum(narrow_fraction * track_width(radius[i]));
+      const auto& others = kept_on_edge[g.gverts[i].edge.index()];
+      near += std::any_of(others.begin(), others.end(), [&](std::uint32_t k) {
+                return quantum(distance(g.gverts[i].position, g.gverts[k].position)) < reach;
+              })
+                  ? 1u
+                  : 0u;
+    }
+    if (static_cast<double>(near) < kCrowdShare * static_cast<double>(points[set].size()) ||
+        last_at_concave(set)) {
+      keep(set);
+      continue;
+    }
+    for (std::uint32_t src : sources_of[set]) {
+      crowded.push_back(src);
+      if (g.gverts[src].vertex) --rays_at_vertex[g.gverts[src].vertex->index()];
+    }
+  }
+  return crowded;
+}
+
 }  // namespace
 
 LaidSources::LaidSources() = default;
@@ -52,10 +141,12 @@ void remove_narrow_corridors(const Part& part,
                              const std::function<double(double)>& track_width,
                              double narrow_fraction,
                              bool one_per_round,
+                             bool drop_crowded,
                              std::vector<Vec3>& suppressed,
                              std::vector<DeletedRail>& deleted,
                              std::size_t& kept,
                              std::size_t& rounds,
+                             std::size_t& crowded,
                              OppositeCache& cache,
                              LaidSources* last) {
   const BoundaryIndex index(part);
@@ -159,6 +250,16 @@ void remove_narrow_corridors(const Part& part,
     for (const CutVert& c : g.cuts) {
       place[c.g.index()] = std::min(place[c.g.index()], key(c.patch, c.at.loop, c.at.u()));
       patch_of[c.g.index()] = c.patch;
+    }
+    // Before the first round's corridors are read: the crowded rail sets are not laid.
+    if (round == 0 && drop_crowded) {
+      const std::vector<std::uint32_t> drop = crowded_sources(
+          part, g, uf, sources_of, rays_at_vertex, place, track_width, narrow_fraction);
+      if (!drop.empty()) {
+        for (std::uint32_t src : drop) suppressed.push_back(g.gverts[src].position);
+        crowded = drop.size();
+        continue;
+      }
     }
     // The G-CUT-VERTs whose rails run through a branch point.
     std::vector<bool> via_branch(g.gverts.size(), false);

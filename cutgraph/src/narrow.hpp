@@ -38,17 +38,21 @@ LaidSources lay_sources(const Part& part,
 /// branch point) except small features (a corridor bounded by a convex corner) and corridors
 /// whose only deletable rail is the last one at a concave vertex (counted in `kept`).
 /// `suppressed` receives the positions of the deleted source points, `deleted` a record each,
-/// `rounds` the count of rounds that deleted rails. `cache` keeps the points mapped across the
+/// `rounds` the count of rounds that deleted rails. With `drop_crowded`, the crowded rail sets
+/// are left out before the first round's corridors are read (docs/cutgraph.md, "Crowded
+/// rails"; their source points go to `suppressed` too), and `crowded` receives their count. `cache` keeps the points mapped across the
 /// axis from round to round. `last`, when given, receives the last round's rails.
 void remove_narrow_corridors(const Part& part,
                              const std::vector<MedialAxis>& axes,
                              const std::function<double(double)>& track_width,
                              double narrow_fraction,
                              bool one_per_round,
+                             bool drop_crowded,
                              std::vector<Vec3>& suppressed,
                              std::vector<DeletedRail>& deleted,
                              std::size_t& kept,
                              std::size_t& rounds,
+                             std::size_t& crowded,
                              OppositeCache& cache,
                              LaidSources* last = nullptr);
 

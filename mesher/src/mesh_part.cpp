@@ -109,6 +109,7 @@ CutGraphOptions cut_graph_options(const Part& part,
                                   std::unique_ptr<TrackWidthLaw>& law,
                                   std::optional<double>* size_capped_from) {
   CutGraphOptions cg;
+  cg.drop_crowded_rails = options.drop_crowded_rails;
   law.reset();
   if (options.adaptive.value_or(part.mesh.mode == MeshMode::Adaptive)) {
     AdaptiveOptions ao;
@@ -170,6 +171,7 @@ MeshPartResult mesh_part_unchecked_input(const Part& part,
   r.spiral_closures = graph.spiral_closures;
   r.loop_closures = graph.loop_closures;
   r.rail_merges = graph.rail_merges;
+  r.crowded_rails = graph.crowded_rails;
   r.tracks = graph.track_count;
   r.times.rails = clock.lap();
   stage("quads");

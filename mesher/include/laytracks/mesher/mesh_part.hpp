@@ -70,6 +70,8 @@ struct MeshPartOptions {
   std::optional<double> dtheta_deg;
   std::optional<double> min_size;  ///< adaptive: no track narrower (default MIN_END_WIDTH)
   std::optional<double> max_size;  ///< adaptive: no track wider (default: no bound)
+  /// CutGraphOptions::drop_crowded_rails (false only in tests of what follows on crowded rails).
+  bool drop_crowded_rails = true;
 };
 
 /// The uniform element size: the options' size, else the part's mesh.size, else
@@ -106,6 +108,7 @@ struct MeshPartResult {
   std::size_t spiral_closures = 0;  ///< rails ended on a point of their edge (CutGraph)
   std::size_t loop_closures = 0;    ///< rails landed on their own chain's earlier crossing
   std::size_t rail_merges = 0;      ///< rails landed on another chain's point close by
+  std::size_t crowded_rails = 0;    ///< source points of crowded rail sets not laid (CutGraph)
   std::size_t tracks = 0;
   StageTimes times;
   MeshCheck check;                ///< of the final mesh: valid, or mesh_part threw
