@@ -96,6 +96,7 @@ int run_check_loops(const std::vector<std::string>& argv) {
   doc["narrow_rounds"] = graph.narrow_rounds;
   doc["narrow_corridors_kept"] = graph.narrow_kept;
   doc["crowded_rails_dropped"] = graph.crowded_rails;
+  doc["crowded_seeds_dropped"] = graph.crowded_seeds;
   doc["problems"] = problems;
   if (const auto path = args.value("--json")) {
     write_file_atomically(*path, [&](std::ostream& o) { o << doc.dump(1) << '\n'; });
@@ -112,10 +113,10 @@ int run_check_loops(const std::vector<std::string>& argv) {
                 graph.chains.size(), loops, graph.gverts.size(), tracks, seconds);
     std::printf(
         "%zu corridors, %zu tracks; %zu source rails deleted for narrow corridors (in %zu "
-        "rounds), %zu narrow corridors kept (small features), %zu crowded source rails not "
-        "laid\n",
+        "rounds), %zu narrow corridors kept (small features); not laid for crowding: %zu "
+        "source rails, %zu track seeds\n",
         graph.corridor_count, graph.track_count, graph.deleted.size(), graph.narrow_rounds,
-        graph.narrow_kept, graph.crowded_rails);
+        graph.narrow_kept, graph.crowded_rails, graph.crowded_seeds);
     std::printf("chain ends:\n");
     for (const auto& [end, n] : ends) std::printf("  %-15s %zu\n", end.c_str(), n);
     std::printf("largest loop closure gap %.3g (limit %.3g): %s\n", max_gap,

@@ -155,6 +155,7 @@ int run_mesh(const std::vector<std::string>& argv) {
     doc["loop_closures"] = r.loop_closures;
     doc["rail_merges"] = r.rail_merges;
     doc["crowded_rails_dropped"] = r.crowded_rails;
+    doc["crowded_seeds_dropped"] = r.crowded_seeds;
     doc["parity_fixes"] = {{"boundary_pieces", r.stats.parity_boundary},
                            {"rail_segments", r.stats.parity_rails},
                            {"strips_matched", r.stats.parity_strips}};

@@ -189,14 +189,16 @@ CutGraph build_cut_graph(const Part& part,
   g.corridor_count = corridors.count;
   if (tracks && options.lay_tracks) {
     const cutgraph_detail::TrackSpacing spacing{options.track_width, law};
+    // Crowded seeds are not laid (docs/cutgraph.md, "Crowded rails").
+    const double crowd = options.drop_crowded_rails ? options.narrow_fraction : 0.0;
     for (const auto& seed : cutgraph_detail::track_seeds(part, corridors, spacing))
-      layer.lay_from(seed.patch, seed.point);
+      layer.lay_from(seed.patch, seed.point, crowd);
     corridors = corridors_now();
     // Sides the longest CUT-SEG's rails did not reach get tracks of their own (docs/cutgraph.md).
     for (int round = 0; round < 3; ++round) {
       const auto gaps = cutgraph_detail::gap_seeds(part, corridors, spacing);
       if (gaps.empty()) break;
-      for (const auto& seed : gaps) layer.lay_from(seed.patch, seed.point);
+      for (const auto& seed : gaps) layer.lay_from(seed.patch, seed.point, crowd);
       corridors = corridors_now();
     }
   }

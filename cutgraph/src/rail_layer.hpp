@@ -56,6 +56,10 @@ constexpr double kCoincideRel = 0.15;
 /// box got 6959, 7038 or 7115 quads by pose.
 constexpr double kCoincideTrack = 0.25;
 
+/// A track seed is not laid near a point that a rail reached across this many shared edges or
+/// more (RailLayer::lay_from: crowded seeds).
+constexpr std::uint32_t kCrowdSeedHops = 5;
+
 class RailLayer {
  public:
   /// `track_width(radius)`: the track width at a medial radius, when tracks are laid (it bounds
@@ -131,14 +135,30 @@ class RailLayer {
   /// Source points at these places are not laid: their rails were deleted (narrow corridors).
   void suppress(std::vector<Vec3> points) { suppressed_ = std::move(points); }
 
-  /// Lays the rail through a boundary point of patch p (a track rail), and all it leads to.
-  void lay_from(PatchId p, const BoundaryPoint& bp) {
+  /// Lays the rail through a boundary point of patch p (a track rail), and all it leads to;
+  /// with `crowd_fraction` > 0, not when the seed is crowded (below).
+  void lay_from(PatchId p, const BoundaryPoint& bp, double crowd_fraction = 0.0) {
     if (bp.site.kind != BoundarySite::Kind::Corner) {
       // A seed between a leaning rail's target and its landing: that rail is this seed's
       // (laying it would cross the leaning one).
       const EdgeId e = index_.edge_at(p, bp.site.loop, bp.site.index);
       const double t = index_.edge_param(p, bp.site.loop, bp.site.index, bp.s);
       if (inside_lean(e, t).valid()) return;
+      // A crowded seed (docs/cutgraph.md, "Crowded rails"): within crowd_fraction x the track
+      // width of a point that a rail reached across kCrowdSeedHops shared edges or more (a
+      // track drifting round a band of thin triangles, lap after lap), its rail would run
+      // beside that one.
+      if (crowd_fraction > 0.0 && track_width_) {
+        double gap = 0.0;
+        const GCutId near = registry_.nearest(e, t, &gap);
+        if (near.valid() && gap > registry_tolerance() && hops_of(near) >= kCrowdSeedHops) {
+          const std::optional<MaPoint> m = axes_[p.index()].project(bp);
+          if (m && gap < crowd_fraction * track_width_(m->radius)) {
+            ++g_.crowded_seeds;
+            return;
+          }
+        }
+      }
     }
     const GCutId g = gcut_of(p, bp, nullptr);
     if (!root_of(g).valid()) set_root(g, g);

@@ -172,6 +172,7 @@ MeshPartResult mesh_part_unchecked_input(const Part& part,
   r.loop_closures = graph.loop_closures;
   r.rail_merges = graph.rail_merges;
   r.crowded_rails = graph.crowded_rails;
+  r.crowded_seeds = graph.crowded_seeds;
   r.tracks = graph.track_count;
   r.times.rails = clock.lap();
   stage("quads");

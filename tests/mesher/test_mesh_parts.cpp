@@ -59,9 +59,9 @@ void check_test_parts(std::initializer_list<std::pair<const char*, double>> case
   }
 }
 
-/// Options that lay every source rail (MeshPartOptions::drop_crowded_rails off): for the rules
-/// after the rails that act where rails crowd, on parts whose crowded rail sets are left out
-/// since session 48 (docs/cutgraph.md, "Crowded rails").
+/// Options that lay every source rail and track seed (MeshPartOptions::drop_crowded_rails
+/// off): for the rules after the rails that act where rails crowd, on parts whose crowded
+/// rails are left out since session 48 (docs/cutgraph.md, "Crowded rails").
 MeshPartOptions every_source_rail() {
   MeshPartOptions o;
   o.drop_crowded_rails = false;
@@ -1422,9 +1422,9 @@ TEST_CASE("two rails between the same two feet of a needle facet become one, in 
   // one node on each side (kTinyPiece), so the two rails joined the same two nodes, and the MA
   // point of one lay on the tip's side of the other's feet: the tip's face was a dart, split
   // into quads of half the tip's angle (0.022). One rail of such twins is dropped: the tip is
-  // one quad, as sharp as the facet, sin(2.5 degrees) = 0.0436. Every source rail is laid:
-  // since session 48 the twins' crowded rail sets are not laid (docs/cutgraph.md, "Crowded
-  // rails"), and one needle's tip is two quads, 0.038 (docs/cutgraph.md, left alone).
+  // one quad, as sharp as the facet, sin(2.5 degrees) = 0.0436. Every source rail and track
+  // seed is laid: since session 48 the twins are crowded and not laid (docs/cutgraph.md,
+  // "Crowded rails"; 2,901 quads instead of 4,284, the tips as sharp as the facet again).
   check_test_parts({{"tube48_tri.json", 0.043}},
                    [](const MeshPartResult& r) { return r.stats.twin_rails > 0; },
                    every_source_rail());
@@ -1486,6 +1486,23 @@ TEST_CASE("rails that drift across a band of thin triangles are thinned to the t
     CHECK(per_size2 < 8.0);
     if (first == 0) first = r.mesh.elements.size();
     CHECK(r.mesh.elements.size() == first);
+  }
+}
+
+TEST_CASE("track rails drifting round a tube of needle facets are not laid beside each other",
+          "[mesh][poses]") {
+  // tube48_tri.json: 48 columns of two triangles 1.31 x 30 at mesh.size 4. A track rail climbs
+  // 0.03 at every column and runs round the tube lap after lap (the hop bound ends it), so the
+  // tracks laid from one corridor's seeds came to lie a fraction of a track apart: 4,284
+  // quads. A seed within half a track of a point that a rail reached across five shared edges
+  // or more is not laid (docs/cutgraph.md, "Crowded rails"): 2,901, the needles' tips as sharp
+  // as the facets (sin 2.5 degrees).
+  const RawPart raw = read_brep_json(test_data_dir() + "/parts/tube48_tri.json");
+  const MeshPartResult every = mesh_part(build_part(raw), every_source_rail());
+  REQUIRE(every.check.valid());
+  for (const MeshPartResult& r : check_three_poses(raw, 0.043)) {
+    CHECK(r.crowded_seeds > 0);
+    CHECK(r.mesh.elements.size() * 5 <= every.mesh.elements.size() * 4);
   }
 }
 

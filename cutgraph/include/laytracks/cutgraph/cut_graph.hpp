@@ -128,6 +128,9 @@ struct CutGraph {
   /// Source points not laid because their rail sets ran a fraction of a track beside rails
   /// kept before them across many patches (docs/cutgraph.md, "Crowded rails").
   std::size_t crowded_rails = 0;
+  /// Track seeds not laid beside a rail that reached them across many shared edges (a track
+  /// drifting round a band of thin triangles; docs/cutgraph.md, "Crowded rails").
+  std::size_t crowded_seeds = 0;
   /// Per patch, per arc of the part (Part::arcs): the round hole its rails land on along rays
   /// from the centre (MedialAxis::choose_round_holes), as the index of its circle in the
   /// patch's Polygon2::circles; -1 for the other arcs.
@@ -153,9 +156,10 @@ struct CutGraphOptions {
   /// deletion no narrower one's can change (docs/cutgraph.md): the slow reference that the
   /// rounds must agree with, for tests.
   bool narrow_one_per_round = false;
-  /// Leave out the crowded rail sets before the narrow corridors (docs/cutgraph.md, "Crowded
-  /// rails"); false lays every source rail, for the tests of what comes after on rails that
-  /// crowd (a torus of quads' strips, a needle facet's twin rails).
+  /// Leave out the crowded rail sets before the narrow corridors, and the crowded track seeds
+  /// (docs/cutgraph.md, "Crowded rails"); false lays every source rail and seed, for the tests
+  /// of what comes after on rails that crowd (a torus of quads' strips, a needle facet's twin
+  /// rails).
   bool drop_crowded_rails = true;
   /// Lay the track rails (false: stop after removing narrow corridors, to look at corridors).
   bool lay_tracks = true;

@@ -109,6 +109,7 @@ struct MeshPartResult {
   std::size_t loop_closures = 0;    ///< rails landed on their own chain's earlier crossing
   std::size_t rail_merges = 0;      ///< rails landed on another chain's point close by
   std::size_t crowded_rails = 0;    ///< source points of crowded rail sets not laid (CutGraph)
+  std::size_t crowded_seeds = 0;    ///< crowded track seeds not laid (CutGraph)
   std::size_t tracks = 0;
   StageTimes times;
   MeshCheck check;                ///< of the final mesh: valid, or mesh_part threw
