@@ -152,8 +152,12 @@ class RailLayer {
         double gap = 0.0;
         const GCutId near = registry_.nearest(e, t, &gap);
         if (near.valid() && gap > registry_tolerance() && hops_of(near) >= kCrowdSeedHops) {
+          // On the widths' grid (1e-9 x the part's size): a gap within rounding of the reach
+          // decides alike in every pose.
           const std::optional<MaPoint> m = axes_[p.index()].project(bp);
-          if (m && gap < crowd_fraction * track_width_(m->radius)) {
+          const double grain = 1e-9 * part_.size;
+          if (m && std::llround(gap / grain) <
+                       std::llround(crowd_fraction * track_width_(m->radius) / grain)) {
             ++g_.crowded_seeds;
             return;
           }
