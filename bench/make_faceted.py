@@ -8,6 +8,8 @@ Usage: bench/make_faceted.py OUTDIR   (prints the part names)
 """
 import json, math, os, random, sys
 TAU = 2 * math.pi
+if len(sys.argv) != 2 or sys.argv[1].startswith("-"):
+    sys.exit(__doc__.strip())
 out = sys.argv[1]
 def write(name, v, faces, size=None):
     d = {"laytracks": "brep/1", "units": "mm", "vertices": [list(map(float, p)) for p in v],

@@ -39,6 +39,8 @@ def icosphere(level):
 
 
 def main():
+    if len(sys.argv) != 4 or sys.argv[1].startswith("-"):
+        sys.exit(__doc__.strip())
     level, radius, out = int(sys.argv[1]), float(sys.argv[2]), sys.argv[3]
     v, f = icosphere(level)
     part = {"laytracks": "brep/1", "units": "mm",

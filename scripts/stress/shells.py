@@ -187,6 +187,8 @@ def hullpart(rnd):
     return v, [list(t) for t in f], "hull_%d" % len(v)
 
 def main():
+    if len(sys.argv) != 4 or sys.argv[1].startswith("-"):
+        sys.exit(__doc__.strip())
     out, N, seed = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
     os.makedirs(out, exist_ok=True)
     fams = [("hull", hullpart), ("prism", lambda r: prism(r)), ("hole", lambda r: prism(r, True)),
