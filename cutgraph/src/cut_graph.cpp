@@ -169,10 +169,10 @@ CutGraph build_cut_graph(const Part& part,
   // same rails and corridors that laying them again gives), else laid here.
   cutgraph_detail::LaidSources laid;
   if (tracks && options.narrow_fraction > 0.0) {
-    cutgraph_detail::remove_narrow_corridors(part, axes, track_width, options.narrow_fraction,
-                                             options.narrow_one_per_round, options.drop_crowded_rails, suppressed,
-                                             graph.deleted, graph.narrow_kept, graph.narrow_rounds,
-                                             graph.crowded_rails, cache, &laid);
+    cutgraph_detail::remove_narrow_corridors(
+        part, axes, track_width, options.narrow_fraction, options.narrow_one_per_round,
+        options.drop_crowded_rails, suppressed, graph.deleted, graph.narrow_kept,
+        graph.narrow_rounds, graph.crowded_rails, cache, &laid);
   }
   if (!laid.graph) laid = cutgraph_detail::lay_sources(part, axes, track_width, suppressed, cache);
   CutGraph& g = *laid.graph;

@@ -42,14 +42,15 @@ constexpr double kCrowdShare = 0.75;
 /// The source points of the crowded rail sets of the graph, in order (see above).
 /// `rays_at_vertex`: the source rails at each concave vertex (a copy: the sets dropped here
 /// take theirs away, and the last may not go).
-std::vector<std::uint32_t> crowded_sources(const Part& part,
-                                           const CutGraph& g,
-                                           UnionFind& uf,
-                                           const std::vector<std::vector<std::uint32_t>>& sources_of,
-                                           std::vector<std::size_t> rays_at_vertex,
-                                           const std::vector<LoopKey>& place,
-                                           const std::function<double(double)>& track_width,
-                                           double narrow_fraction) {
+std::vector<std::uint32_t> crowded_sources(
+    const Part& part,
+    const CutGraph& g,
+    UnionFind& uf,
+    const std::vector<std::vector<std::uint32_t>>& sources_of,
+    std::vector<std::size_t> rays_at_vertex,
+    const std::vector<LoopKey>& place,
+    const std::function<double(double)>& track_width,
+    double narrow_fraction) {
   const std::size_t n = g.gverts.size();
   // The radius at each G-CUT-VERT: its longest rail segment.
   std::vector<double> radius(n, 0.0);

@@ -40,8 +40,9 @@ LaidSources lay_sources(const Part& part,
 /// `suppressed` receives the positions of the deleted source points, `deleted` a record each,
 /// `rounds` the count of rounds that deleted rails. With `drop_crowded`, the crowded rail sets
 /// are left out before the first round's corridors are read (docs/cutgraph.md, "Crowded
-/// rails"; their source points go to `suppressed` too), and `crowded` receives their count. `cache` keeps the points mapped across the
-/// axis from round to round. `last`, when given, receives the last round's rails.
+/// rails"; their source points go to `suppressed` too), and `crowded` receives their count. `cache`
+/// keeps the points mapped across the axis from round to round. `last`, when given, receives the
+/// last round's rails.
 void remove_narrow_corridors(const Part& part,
                              const std::vector<MedialAxis>& axes,
                              const std::function<double(double)>& track_width,
