@@ -6,6 +6,7 @@
 #include <cmath>
 #include <deque>
 #include <functional>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <tuple>
@@ -56,6 +57,15 @@ constexpr double kCoincideRel = 0.15;
 /// box got 6959, 7038 or 7115 quads by pose.
 constexpr double kCoincideTrack = 0.25;
 
+/// Small facets (join_source): two branch points on either side of a shared edge whose radii
+/// are both below kSmallFacetRel x the track width (facets thinner than half a track there)
+/// join their touching points on it within kSmallFacetJoin x the track width, not only within
+/// the coincide limit: one rail per edge, and each such facet three kites round its incentre.
+/// A torus of 96 x 48 triangle pairs at size 1.25 had each facet's and each neighbour's
+/// touching points as rails of their own on every shared edge: 95,566 quads, ten a facet,
+/// whatever the size asked; now 27,661 (docs/cutgraph.md, "Coincident rails").
+constexpr double kSmallFacetRel = 0.25;
+constexpr double kSmallFacetJoin = 1.0;
 /// A track seed is not laid near a point that a rail reached across this many shared edges or
 /// more (RailLayer::lay_from: crowded seeds).
 constexpr std::uint32_t kCrowdSeedHops = 5;
@@ -85,6 +95,8 @@ class RailLayer {
         if (join_source(pid, v, bp)) continue;
         const GCutId g = gcut_of(pid, bp, nullptr);
         g_.gverts[g.index()].source = true;
+        if (source_radius_.size() <= g.index()) source_radius_.resize(g.index() + 1, kNoRadius);
+        source_radius_[g.index()] = axes_[p].vertex(v).radius;
         set_root(g, g);
         if (const auto corner = corner_in(pid, g)) {
           // A branch point touching a reflex corner: the rail is one ray of the corner's fan
@@ -449,7 +461,8 @@ class RailLayer {
 
   /// Joined sources (docs/cutgraph.md, "Coincident rails"): a touching point of branch point v
   /// of patch p on a shared edge, within the coincide limit of the touching point of an earlier
-  /// patch's branch point on that edge, is not a source of its own: the rail from v leans to
+  /// patch's branch point on that edge (or, both branch points of small facets, within
+  /// kSmallFacetJoin x the track width), is not a source of its own: the rail from v leans to
   /// that point, and the two branch points are joined by one rail chain. (On a shell of
   /// irregular triangles each shared edge holds both facets' incircle touching points a few
   /// hundredths of an element apart; each pair made two chains side by side and a sliver
@@ -461,9 +474,22 @@ class RailLayer {
     if (!is_shared(e)) return false;
     const double t = index_.edge_param(p, bp.site.loop, bp.site.index, bp.s);
     const MedialAxis& ma = axes_[p.index()];
+    const double r = ma.vertex(v).radius;
     double d = 0.0;
-    const GCutId near =
-        coincident(e, t, ma.vertex(v).radius, [&](GCutId x) { return !cut_of(x, p); }, &d);
+    GCutId near = coincident(e, t, r, [&](GCutId x) { return !cut_of(x, p); }, &d);
+    if (!near.valid() && track_width_) {
+      // Small facets on both sides (kSmallFacetRel): the other's touching point within
+      // kSmallFacetJoin x the track width.
+      const auto small = [&](double radius) {
+        return radius < kSmallFacetRel * track_width_(radius);
+      };
+      const GCutId x = registry_.nearest_if(
+          e, t, [&](GCutId y) { return !g_.gverts[y.index()].vertex && !cut_of(y, p); }, &d);
+      if (x.valid() && small(r) && x.index() < source_radius_.size() &&
+          small(source_radius_[x.index()]) && d > registry_tolerance() &&
+          d <= kSmallFacetJoin * track_width_(r))
+        near = x;
+    }
     if (!near.valid()) return false;
     const CutVertId c = make_cut(near, p, image_in(near, p, bp.site.loop, bp.site.index));
     const MaCutId mc = make_macut(p, vertex_point(ma, v));
@@ -522,6 +548,9 @@ class RailLayer {
   BoundaryIndex index_;
   GCutRegistry registry_;
   std::uint32_t max_hops_;
+  /// Per source G-CUT-VERT: the radius of its branch point (kNoRadius for other points).
+  static constexpr double kNoRadius = std::numeric_limits<double>::infinity();
+  std::vector<double> source_radius_;
   std::vector<std::uint32_t> hops_;  ///< per G-CUT-VERT: see hops_of
   std::vector<GCutId> roots_;        ///< per G-CUT-VERT: see root_of
   /// Per edge: the span between a leaning rail's target and the point it landed on.
