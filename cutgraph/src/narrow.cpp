@@ -26,6 +26,16 @@ bool at_corner(const Part& part, const BoundaryIndex& index, const GCutVert& g) 
   return false;
 }
 
+/// Whether the source points `srcs` hold the last source rail of a concave vertex
+/// (`rays_at_vertex`: the source rails at each), which may not be deleted.
+bool holds_last_ray(const std::vector<std::uint32_t>& srcs,
+                    const CutGraph& g,
+                    const std::vector<std::size_t>& rays_at_vertex) {
+  return std::any_of(srcs.begin(), srcs.end(), [&](std::uint32_t src) {
+    return g.gverts[src].vertex && rays_at_vertex[g.gverts[src].vertex->index()] <= 1;
+  });
+}
+
 /// Crowded rails (docs/cutgraph.md, "Crowded rails"): a source rail set that reaches at least
 /// kCrowdMinPoints points inside B-Rep edges (it runs across patches) and has, at
 /// kCrowdShare of them or more, a point of a rail set kept before it on the same edge closer
@@ -69,9 +79,7 @@ std::vector<std::uint32_t> crowded_sources(
     for (std::uint32_t i : points[set]) kept_on_edge[g.gverts[i].edge.index()].push_back(i);
   };
   const auto last_at_concave = [&](std::uint32_t set) {
-    return std::any_of(sources_of[set].begin(), sources_of[set].end(), [&](std::uint32_t src) {
-      return g.gverts[src].vertex && rays_at_vertex[g.gverts[src].vertex->index()] <= 1;
-    });
+    return holds_last_ray(sources_of[set], g, rays_at_vertex);
   };
   for (std::uint32_t set = 0; set < n; ++set) {
     if (uf.find(set) != set) continue;
@@ -88,9 +96,8 @@ std::vector<std::uint32_t> crowded_sources(
   std::vector<std::pair<LoopKey, std::uint32_t>> order;
   for (std::uint32_t set : candidates) order.emplace_back(first_place(set), set);
   std::sort(order.begin(), order.end());
-  // Distances on the grid of the widths (1e-9 x the part's size), as everywhere here.
-  const double grain = 1e-9 * part.size;
-  const auto quantum = [&](double x) { return std::llround(x / grain); };
+  // Distances on the widths' grid, as everywhere here.
+  const auto quantum = [&](double x) { return width_quantum(part, x); };
   std::vector<std::uint32_t> crowded;
   for (const auto& [key, set] : order) {
     std::size_t near = 0;
@@ -127,13 +134,14 @@ LaidSources lay_sources(const Part& part,
                         const std::vector<MedialAxis>& axes,
                         const std::function<double(double)>& track_width,
                         const std::vector<Vec3>& suppressed,
-                        OppositeCache& cache) {
+                        OppositeCache& cache,
+                        bool corridors) {
   LaidSources laid;
   laid.graph = std::make_unique<CutGraph>();
   laid.layer = std::make_unique<RailLayer>(part, axes, *laid.graph, track_width);
   laid.layer->suppress(suppressed);
   laid.layer->lay_sources();
-  laid.corridors = find_corridors(part, axes, *laid.graph, &cache);
+  if (corridors) laid.corridors = find_corridors(part, axes, *laid.graph, &cache);
   return laid;
 }
 
@@ -171,8 +179,8 @@ void remove_narrow_corridors(const Part& part,
   // Bounded by the number of source points.
   for (std::size_t round = 0; round < 100000; ++round) {
     // This round's source rails (with the deletions so far) and their corridors.
-    LaidSources laid = lay_sources(part, axes, track_width, suppressed, cache);
-    const std::vector<CorridorPiece> pieces = corridor_pieces_of(part, *laid.graph, laid.corridors);
+    const bool crowd_round = round == 0 && drop_crowded;
+    LaidSources laid = lay_sources(part, axes, track_width, suppressed, cache, !crowd_round);
     const CutGraph& g = *laid.graph;
     const std::vector<RailLayer::Link>& links = laid.layer->links();
     // Rails joined through boundary points (not through MA nodes or corners) form one set.
@@ -183,11 +191,40 @@ void remove_narrow_corridors(const Part& part,
         continue;
       uf.unite(l.from, l.to);
     }
-    // Break points of the CUT-SEGs: the G-CUT-VERT there, if any (the last CUT-VERT at a
-    // place names it), found by binary search.
     const auto key = [&](PatchId p, std::uint32_t loop, double u) {
       return loop_key(part, p, loop, u);
     };
+    // Source points per rail set, and how many source rails end at each concave corner.
+    std::vector<std::vector<std::uint32_t>> sources_of(g.gverts.size());
+    std::vector<std::size_t> rays_at_vertex(part.vertices.size(), 0);
+    for (std::uint32_t i = 0; i < g.gverts.size(); ++i) {
+      if (!g.gverts[i].source) continue;
+      sources_of[uf.find(i)].push_back(i);
+      if (g.gverts[i].vertex) ++rays_at_vertex[g.gverts[i].vertex->index()];
+    }
+    // Where each G-CUT-VERT first appears along the boundary (patch, loop, u); the patch of its
+    // last CUT-VERT.
+    std::vector<LoopKey> place(g.gverts.size(), std::make_tuple(UINT32_MAX, UINT32_MAX, LLONG_MAX));
+    std::vector<PatchId> patch_of(g.gverts.size());
+    for (const CutVert& c : g.cuts) {
+      place[c.g.index()] = std::min(place[c.g.index()], key(c.patch, c.at.loop, c.at.u()));
+      patch_of[c.g.index()] = c.patch;
+    }
+    // Before the first round's corridors are searched: the crowded rail sets are not laid
+    // (when none is, the corridors of these rails are searched now).
+    if (crowd_round) {
+      const std::vector<std::uint32_t> drop = crowded_sources(
+          part, g, uf, sources_of, rays_at_vertex, place, track_width, narrow_fraction);
+      if (!drop.empty()) {
+        for (std::uint32_t src : drop) suppressed.push_back(g.gverts[src].position);
+        crowded = drop.size();
+        continue;
+      }
+      laid.corridors = find_corridors(part, axes, g, &cache);
+    }
+    const std::vector<CorridorPiece> pieces = corridor_pieces_of(part, g, laid.corridors);
+    // Break points of the CUT-SEGs: the G-CUT-VERT there, if any (the last CUT-VERT at a
+    // place names it), found by binary search.
     std::vector<std::pair<LoopKey, GCutId>> cut_at;
     cut_at.reserve(g.cuts.size());
     for (const CutVert& c : g.cuts) cut_at.emplace_back(key(c.patch, c.at.loop, c.at.u()), c.g);
@@ -236,40 +273,13 @@ void remove_narrow_corridors(const Part& part,
     };
     for (auto& b : bounds) sort_unique(b);
     for (auto& cp : corridor_patches) sort_unique(cp);
-    // Source points per rail set, and how many source rails end at each concave corner.
-    std::vector<std::vector<std::uint32_t>> sources_of(g.gverts.size());
-    std::vector<std::size_t> rays_at_vertex(part.vertices.size(), 0);
-    for (std::uint32_t i = 0; i < g.gverts.size(); ++i) {
-      if (!g.gverts[i].source) continue;
-      sources_of[uf.find(i)].push_back(i);
-      if (g.gverts[i].vertex) ++rays_at_vertex[g.gverts[i].vertex->index()];
-    }
-    // Where each G-CUT-VERT first appears along the boundary (patch, loop, u); the patch of its
-    // last CUT-VERT.
-    std::vector<LoopKey> place(g.gverts.size(), std::make_tuple(UINT32_MAX, UINT32_MAX, LLONG_MAX));
-    std::vector<PatchId> patch_of(g.gverts.size());
-    for (const CutVert& c : g.cuts) {
-      place[c.g.index()] = std::min(place[c.g.index()], key(c.patch, c.at.loop, c.at.u()));
-      patch_of[c.g.index()] = c.patch;
-    }
-    // Before the first round's corridors are read: the crowded rail sets are not laid.
-    if (round == 0 && drop_crowded) {
-      const std::vector<std::uint32_t> drop = crowded_sources(
-          part, g, uf, sources_of, rays_at_vertex, place, track_width, narrow_fraction);
-      if (!drop.empty()) {
-        for (std::uint32_t src : drop) suppressed.push_back(g.gverts[src].position);
-        crowded = drop.size();
-        continue;
-      }
-    }
     // The G-CUT-VERTs whose rails run through a branch point.
     std::vector<bool> via_branch(g.gverts.size(), false);
     for (const RailSegment& seg : g.segments)
       if (g.macuts[seg.ma.index()].branch) via_branch[g.cuts[seg.cut.index()].g.index()] = true;
     // Widths within rounding of each other, or of the threshold, must decide the same in every
     // pose: compare them on a grid of 1e-9 x the part's size (and so the rails' lengths below).
-    const double grain = 1e-9 * part.size;
-    const auto quantum = [&](double x) { return std::llround(x / grain); };
+    const auto quantum = [&](double x) { return width_quantum(part, x); };
     // The branch point each rail set meets, for rails through branch points. A set that meets
     // several takes the one its links reach from the G-CUT-VERT first along the boundary
     // (place), then by the shorter rail: keys of the part's own geometry, the same in every
@@ -354,10 +364,7 @@ void remove_narrow_corridors(const Part& part,
         for (std::size_t set : sets) {
           srcs.insert(srcs.end(), sources_of[set].begin(), sources_of[set].end());
         }
-        const bool last_at_concave = std::any_of(srcs.begin(), srcs.end(), [&](std::uint32_t src) {
-          return g.gverts[src].vertex && rays_at_vertex[g.gverts[src].vertex->index()] <= 1;
-        });
-        if (last_at_concave) continue;
+        if (holds_last_ray(srcs, g, rays_at_vertex)) continue;
         auto unit_key = std::make_tuple(UINT32_MAX, UINT32_MAX, LLONG_MAX);
         for (std::uint32_t src : srcs) unit_key = std::min(unit_key, place[src]);
         if (best.empty() || srcs.size() < best.size() ||

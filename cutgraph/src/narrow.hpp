@@ -24,12 +24,14 @@ struct LaidSources {
   ~LaidSources();
 };
 
-/// Lays the source rails with the points in `suppressed` left out, and finds their corridors.
+/// Lays the source rails with the points in `suppressed` left out, and finds their corridors
+/// (unless `corridors` is false).
 LaidSources lay_sources(const Part& part,
                         const std::vector<MedialAxis>& axes,
                         const std::function<double(double)>& track_width,
                         const std::vector<Vec3>& suppressed,
-                        OppositeCache& cache);
+                        OppositeCache& cache,
+                        bool corridors = true);
 
 /// Deletes source rails, round by round (in each, for every narrow corridor whose deletion is
 /// far from every narrower one's, by patches or by corridors; with `one_per_round`, for the

@@ -57,6 +57,13 @@ constexpr double kCoincideRel = 0.15;
 /// box got 6959, 7038 or 7115 quads by pose.
 constexpr double kCoincideTrack = 0.25;
 
+/// Widths and distances that decide are compared on a grid of this x the part's size
+/// (width_quantum): values within rounding of each other decide alike in every pose.
+constexpr double kWidthGrainRel = 1e-9;
+inline long long width_quantum(const Part& part, double x) {
+  return std::llround(x / (kWidthGrainRel * part.size));
+}
+
 /// Small facets (join_source): two branch points on either side of a shared edge whose radii
 /// are both below kSmallFacetRel x the track width (facets thinner than half a track there)
 /// join their touching points on it within kSmallFacetJoin x the track width, not only within
@@ -164,12 +171,10 @@ class RailLayer {
         double gap = 0.0;
         const GCutId near = registry_.nearest(e, t, &gap);
         if (near.valid() && gap > registry_tolerance() && hops_of(near) >= kCrowdSeedHops) {
-          // On the widths' grid (1e-9 x the part's size): a gap within rounding of the reach
-          // decides alike in every pose.
+          // On the widths' grid: a gap within rounding of the reach decides alike in every pose.
           const std::optional<MaPoint> m = axes_[p.index()].project(bp);
-          const double grain = 1e-9 * part_.size;
-          if (m && std::llround(gap / grain) <
-                       std::llround(crowd_fraction * track_width_(m->radius) / grain)) {
+          if (m && width_quantum(part_, gap) <
+                       width_quantum(part_, crowd_fraction * track_width_(m->radius))) {
             ++g_.crowded_seeds;
             return;
           }
@@ -476,21 +481,19 @@ class RailLayer {
     const MedialAxis& ma = axes_[p.index()];
     const double r = ma.vertex(v).radius;
     double d = 0.0;
-    GCutId near = coincident(e, t, r, [&](GCutId x) { return !cut_of(x, p); }, &d);
-    if (!near.valid() && track_width_) {
-      // Small facets on both sides (kSmallFacetRel): the other's touching point within
-      // kSmallFacetJoin x the track width.
-      const auto small = [&](double radius) {
-        return radius < kSmallFacetRel * track_width_(radius);
-      };
-      const GCutId x = registry_.nearest_if(
-          e, t, [&](GCutId y) { return !g_.gverts[y.index()].vertex && !cut_of(y, p); }, &d);
-      if (x.valid() && small(r) && x.index() < source_radius_.size() &&
-          small(source_radius_[x.index()]) && d > registry_tolerance() &&
-          d <= kSmallFacetJoin * track_width_(r))
-        near = x;
-    }
-    if (!near.valid()) return false;
+    const GCutId near = registry_.nearest_if(
+        e, t, [&](GCutId x) { return !g_.gverts[x.index()].vertex && !cut_of(x, p); }, &d);
+    if (!near.valid() || d <= registry_tolerance()) return false;
+    // The coincide limit; small facets on both sides (kSmallFacetRel) kSmallFacetJoin x the
+    // track width.
+    const auto small = [&](double radius) {
+      return track_width_ && radius < kSmallFacetRel * track_width_(radius);
+    };
+    const double reach = small(r) && near.index() < source_radius_.size() &&
+                                 small(source_radius_[near.index()])
+                             ? std::max(coincide_limit(r), kSmallFacetJoin * track_width_(r))
+                             : coincide_limit(r);
+    if (d > reach) return false;
     const CutVertId c = make_cut(near, p, image_in(near, p, bp.site.loop, bp.site.index));
     const MaCutId mc = make_macut(p, vertex_point(ma, v));
     g_.segments.push_back({c, mc, true});
