@@ -35,10 +35,19 @@ const char* const kCheckLoopsHelp =
     "  --size W, --uniform, --adaptive, --dtheta, --min-size, --max-size\n"
     "                  the tracks, as for `laytracks mesh` (laytracks help mesh)\n"
     "  --json OUT.json "
-    "{\"rails\":[{\"id\",\"start\",\"end\",\"closure_gap\",\"patches\"}],\"loops\",\n"
-    "                  \"max_closure_gap\",\"ok\",...}\n"
+    "{\"rails\":[{\"id\",\"start\",\"end\",\"closure_gap\",\"source\",\"patches\",\n"
+    "                  \"points\",\"from\",\"to\"}],\"deleted\":[{\"at\",\"patch\",\n"
+    "                  \"corridor_width\",\"through_branch_point\"}],\"loops\",\"max_closure_gap\",\n"
+    "                  \"ok\",...}: each rail's first and last boundary points and each\n"
+    "                  deleted source rail's point in the part's 3D frame (the same rails\n"
+    "                  in another pose of the part are at the posed points)\n"
     "  --chord-tol T   sagitta bound for arcs\n"
     "  --quiet         print nothing but errors\n";
+
+namespace {
+/// A point as [x, y, z].
+nlohmann::ordered_json xyz(Vec3 p) { return nlohmann::ordered_json::array({p.x, p.y, p.z}); }
+}  // namespace
 
 /// Largest closure gap of a loop accepted, x the part's size (the paper's lemma, Fig. 4).
 constexpr double kMaxClosureGapRel = 1e-9;
@@ -73,17 +82,30 @@ int run_check_loops(const std::vector<std::string>& argv) {
     }
     nlohmann::ordered_json patches = nlohmann::ordered_json::array();
     for (PatchId p : c.patches) patches.push_back(part.patches[p.index()].name);
-    rails.push_back({{"id", i},
-                     {"start", to_string(c.start)},
-                     {"end", to_string(c.end)},
-                     {"closure_gap", c.closure_gap},
-                     {"source", c.source},
-                     {"patches", patches}});
+    nlohmann::ordered_json rail{{"id", i},
+                                {"start", to_string(c.start)},
+                                {"end", to_string(c.end)},
+                                {"closure_gap", c.closure_gap},
+                                {"source", c.source},
+                                {"patches", patches},
+                                {"points", c.through.size()}};
+    if (!c.through.empty()) {
+      rail["from"] = xyz(graph.gverts[c.through.front().index()].position);
+      rail["to"] = xyz(graph.gverts[c.through.back().index()].position);
+    }
+    rails.push_back(std::move(rail));
   }
+  nlohmann::ordered_json deleted = nlohmann::ordered_json::array();
+  for (const DeletedRail& d : graph.deleted)
+    deleted.push_back({{"at", xyz(d.at)},
+                       {"patch", part.patches[d.patch.index()].name},
+                       {"corridor_width", d.corridor_width},
+                       {"through_branch_point", d.through_branch_point}});
   const bool gaps_ok = max_gap <= kMaxClosureGapRel * part.size;
   const bool ok = problems.empty() && gaps_ok;
   nlohmann::ordered_json doc;
   doc["rails"] = rails;
+  doc["deleted"] = deleted;
   doc["loops"] = loops;
   doc["max_closure_gap"] = max_gap;
   doc["ok"] = ok;

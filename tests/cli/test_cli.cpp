@@ -141,6 +141,28 @@ TEST_CASE("check-loops reports the cube's loops as JSON, and draw writes picture
   const auto nd = nlohmann::json::parse(slurp(d / "narrow.json"));
   CHECK(nd["narrow_rounds"].get<int>() > 0);
   CHECK(nd["narrow_rounds"].get<int>() <= nd["deleted_rails"].get<int>());
+  // Each deleted rail's point and each rail's ends, in the part's frame (complex_1 lies in
+  // z = 0 within its bounding box), to compare the rails of two poses.
+  REQUIRE(nd["deleted"].size() == nd["deleted_rails"].get<std::size_t>());
+  for (const auto& del : nd["deleted"]) {
+    CHECK(del["at"].size() == 3);
+    CHECK(del["at"][2].get<double>() == 0.0);
+    CHECK(del["corridor_width"].get<double>() > 0.0);
+    CHECK(del["patch"] == "complex_1");
+  }
+  std::size_t ended = 0;
+  for (const auto& rail : nd["rails"]) {
+    CHECK(rail["points"].get<std::size_t>() >= 1);
+    if (!rail.contains("from")) continue;
+    ++ended;
+    for (const char* end : {"from", "to"}) {
+      CHECK(rail[end][0].get<double>() > 4.7);
+      CHECK(rail[end][0].get<double>() < 5.4);
+      CHECK(rail[end][1].get<double>() > 61.6);
+      CHECK(rail[end][1].get<double>() < 62.1);
+    }
+  }
+  CHECK(ended == nd["rails"].size());
   CHECK_THAT(narrow.out, Catch::Contains("rounds)"));
   for (const char* stage : {"medial", "corridors", "tracks"}) {
     const fs::path svg = d / (std::string(stage) + ".svg");
