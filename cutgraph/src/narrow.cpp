@@ -36,6 +36,17 @@ bool holds_last_ray(const std::vector<std::uint32_t>& srcs,
   });
 }
 
+/// The place of a G-CUT-VERT not on any loop (no CUT-VERT): after every other.
+constexpr LoopKey kNoPlace{UINT32_MAX, UINT32_MAX, LLONG_MAX};
+
+/// The first of the source points `srcs` along the boundary (`place`: where each G-CUT-VERT
+/// first appears): the key that orders rail sets and units the same in every pose.
+LoopKey first_place(const std::vector<std::uint32_t>& srcs, const std::vector<LoopKey>& place) {
+  LoopKey k = kNoPlace;
+  for (std::uint32_t src : srcs) k = std::min(k, place[src]);
+  return k;
+}
+
 /// Crowded rails (docs/cutgraph.md, "Crowded rails"): a source rail set that reaches at least
 /// kCrowdMinPoints points inside B-Rep edges (it runs across patches) and has, at
 /// kCrowdShare of them or more, a point of a rail set kept before it on the same edge closer
@@ -88,13 +99,8 @@ std::vector<std::uint32_t> crowded_sources(
     else
       candidates.push_back(set);
   }
-  const auto first_place = [&](std::uint32_t set) {
-    LoopKey k{UINT32_MAX, UINT32_MAX, LLONG_MAX};
-    for (std::uint32_t src : sources_of[set]) k = std::min(k, place[src]);
-    return k;
-  };
   std::vector<std::pair<LoopKey, std::uint32_t>> order;
-  for (std::uint32_t set : candidates) order.emplace_back(first_place(set), set);
+  for (std::uint32_t set : candidates) order.emplace_back(first_place(sources_of[set], place), set);
   std::sort(order.begin(), order.end());
   // Distances on the widths' grid, as everywhere here.
   const auto quantum = [&](double x) { return width_quantum(part, x); };
@@ -204,7 +210,7 @@ void remove_narrow_corridors(const Part& part,
     }
     // Where each G-CUT-VERT first appears along the boundary (patch, loop, u); the patch of its
     // last CUT-VERT.
-    std::vector<LoopKey> place(g.gverts.size(), std::make_tuple(UINT32_MAX, UINT32_MAX, LLONG_MAX));
+    std::vector<LoopKey> place(g.gverts.size(), kNoPlace);
     std::vector<PatchId> patch_of(g.gverts.size());
     for (const CutVert& c : g.cuts) {
       place[c.g.index()] = std::min(place[c.g.index()], key(c.patch, c.at.loop, c.at.u()));
@@ -365,8 +371,7 @@ void remove_narrow_corridors(const Part& part,
           srcs.insert(srcs.end(), sources_of[set].begin(), sources_of[set].end());
         }
         if (holds_last_ray(srcs, g, rays_at_vertex)) continue;
-        auto unit_key = std::make_tuple(UINT32_MAX, UINT32_MAX, LLONG_MAX);
-        for (std::uint32_t src : srcs) unit_key = std::min(unit_key, place[src]);
+        const LoopKey unit_key = first_place(srcs, place);
         if (best.empty() || srcs.size() < best.size() ||
             (srcs.size() == best.size() && unit_key < best_key)) {
           best = srcs;
