@@ -1147,6 +1147,53 @@ void set_cavity_memo(bool on) { g_memo_on = on; }
 
 std::size_t cavity_memo_hits() { return g_memo_hits; }
 
+namespace mesher_detail {
+
+std::size_t refill_face(const std::vector<Vec2>& cycle, FaceMesh& m, double below, int iterations) {
+  const std::size_t n = cycle.size();
+  PatchQuads pq;
+  pq.pos = cycle;
+  pq.pos.insert(pq.pos.end(), m.interior.begin(), m.interior.end());
+  pq.fixed.assign(pq.pos.size(), false);
+  std::fill(pq.fixed.begin(), pq.fixed.begin() + static_cast<std::ptrdiff_t>(n), true);
+  pq.global.resize(pq.pos.size());
+  for (std::uint32_t i = 0; i < pq.global.size(); ++i) pq.global[i] = i;
+  pq.quads = m.quads;
+  CavityMemo memo;
+  PatchRefill refill(pq, iterations, below, false, memo);
+  std::size_t kept = 0;
+  int pass = 0;
+  for (; pass < kRefillPasses; ++pass) {
+    const std::size_t more = refill.run(pass);
+    kept += more;
+    if (more == 0) break;
+  }
+  kept += refill.run(pass, true);
+  if (kept == 0) return 0;
+  // The live quads over the cycle's ids and the inner nodes they use, renumbered in order.
+  const std::vector<bool>& alive = refill.alive();
+  std::vector<std::uint32_t> id(pq.pos.size(), kNew);
+  for (std::uint32_t i = 0; i < n; ++i) id[i] = i;
+  FaceMesh out;
+  out.kind = m.kind;
+  for (std::size_t q = 0; q < pq.quads.size(); ++q) {
+    if (!alive[q]) continue;
+    Quad x = pq.quads[q];
+    for (std::uint32_t& v : x) {
+      if (id[v] == kNew) {
+        id[v] = static_cast<std::uint32_t>(n + out.interior.size());
+        out.interior.push_back(pq.pos[v]);
+      }
+      v = id[v];
+    }
+    out.quads.push_back(x);
+  }
+  m = std::move(out);
+  return kept;
+}
+
+}  // namespace mesher_detail
+
 std::size_t refill_cavities(
     const Part& part, QuadMesh& mesh, int iterations, double below, std::size_t* regrids) {
   const std::vector<bool> pinned = pinned_nodes(mesh);

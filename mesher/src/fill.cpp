@@ -159,6 +159,12 @@ struct Builder {
 /// relax() does nothing while fill_cavity runs: the cavity's caller relaxes the quads it
 /// keeps with the quads round them (and the templates' own sweeps were most of its time).
 thread_local bool relax_off = false;
+/// Set while a huge face's lattice is repaired (repair_lattice): the re-fill's own fills are
+/// not repaired in turn.
+thread_local bool in_face_refill = false;
+/// The relaxation sweeps of each kind a repaired lattice's cavities get (refill_face), as the
+/// re-fill's cavities get at most kRefillSweeps.
+constexpr int kFaceRefillSweeps = 4;
 
 /// Improves a template's interior nodes in place (boundary nodes fixed).
 void relax(FaceMesh& m, const FaceInput& face, int iterations) {
@@ -2252,6 +2258,45 @@ std::optional<FaceMesh> fill_sided(const FaceInput& face) {
 /// adaptive, 16 meshes changed: worst corner higher on 5, lower on none).
 constexpr std::size_t kFanSplitMax = 24;
 
+/// A lattice split of a face of more than kHugeFace nodes whose worst corner is below
+/// kAcceptJacobian has its worst quads re-filled as the re-fill does a patch's (refill_face,
+/// docs/mesher.md "Huge faces"). Its coarse polygon is every other face node, so a reflex
+/// node of the other parity has two quads, each with a corner of half its angle (340 degrees:
+/// two corners of 170), and a coarse triangle at a sharp corner can take a flat node between
+/// two coarse ones as a corner of 180 degrees; a face of hundreds of nodes has a few of
+/// either, and until session 50 its lattice lost to the match (0.1-1 s a face, mean shape
+/// 0.85-0.92 against the lattice's 0.95-0.99). The repaired quads replace m when their worst
+/// corner is acceptable and no whole kChoiceStep below `best_worst`, the best of the templates
+/// before (as the match's must be: match_ok); true then. Not inside a re-fill's own fills.
+bool repair_lattice(const FaceInput& face, FaceMesh& m, double best_worst) {
+  if (relax_off || in_face_refill) return false;
+  const auto n = static_cast<std::uint32_t>(face.cycle.size());
+  FaceMesh repaired = m;
+  in_face_refill = true;
+  const std::size_t kept = refill_face(face.cycle, repaired, kAcceptJacobian, kFaceRefillSweeps);
+  in_face_refill = false;
+  if (kept == 0) return false;
+  repaired.min_jacobian = face_score(
+      repaired.quads, [&](std::uint32_t i) { return i < n ? face.cycle[i] : repaired.interior[i - n]; },
+      face);
+  if (repaired.min_jacobian < kAcceptJacobian || quantised(repaired.min_jacobian) < best_worst) return false;
+  m = std::move(repaired);
+  return true;
+}
+
+/// In a face of more than kHugeFace nodes the lattice splits are tried first, and the split
+/// (O(n^3) in the nodes) and the match (a constrained Delaunay refinement and a matching: up
+/// to a second on a face of 900 nodes) only when no acceptable quads so far have a mean shape
+/// (mean_shape) of kHugeFaceShape or more, and, where those quads are a repaired lattice's,
+/// a worst corner of kRepairedSure or more: on such faces they never won (cgal_wiggly_03_cgal
+/// at --size 2.5: its quads stage 7.4 -> 2.9 s on one thread, the same mesh). A repaired
+/// lattice wins on mean shape only among quads of its own kChoiceStep of worst corner: the
+/// teeth of a ragged side leave it acceptable but below a match's (0.34 against 0.41).
+constexpr double kHugeFaceShape = 0.9;
+constexpr double kRepairedSure = 0.5;
+
+double sharpest_sine(const std::vector<Vec2>& cycle);
+
 /// Whether the match template's quads may compete (kMatchMinNodes, kMatchSmallFloor,
 /// kMatchMoreQuads): its worst corner no whole kChoiceStep below the best acceptable one so far,
 /// no more quads than allowed against the pick so far, and in a small face a worst corner of
@@ -2279,14 +2324,25 @@ constexpr double kReflexSkipAbove = 0.8;
 /// in a cavity) also the reflex cut (unless kReflexSkipAbove), the lattice split from either
 /// parity and the match, fan split only for faces of at most kFanSplitMax nodes); of those whose
 /// worst corner is acceptable, the one whose quads are best on average (mean_shape, in whole
-/// kShapeStep steps, the first on ties); the match only where match_ok allows. `consider` sees
-/// every result but a match that match_ok refuses.
+/// kShapeStep steps, the first on ties); the match only where match_ok allows. In a face of
+/// more than kHugeFace nodes the lattice comes first, repaired where its worst corner is below
+/// acceptable (repair_lattice), and the split and the match are skipped after a pick of mean
+/// shape kHugeFaceShape. `consider` sees every result but a match that match_ok refuses.
 template <class Consider>
 std::optional<FaceMesh> pick_unstructured(const FaceInput& face, bool fans, int depth, Consider&& consider) {
   std::optional<FaceMesh> pick;
   double pick_shape = 0.0, best_worst = -1e9;
-  for (int k = 0; k < 9; ++k) {
+  bool pick_repaired = false;
+  const bool huge = fans && face.cycle.size() > kHugeFace;
+  constexpr int kOrder[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+  constexpr int kHugeOrder[9] = {6, 7, 0, 1, 2, 3, 4, 5, 8};
+  for (int step = 0; step < 9; ++step) {
+    const int k = huge ? kHugeOrder[step] : kOrder[step];
     if (!fans && (k == 2 || k == 3 || k >= 5)) continue;
+    if (huge && (k < 2 || k == 8) && pick && pick_shape >= whole_steps(kHugeFaceShape, kShapeStep) &&
+        (!pick_repaired || pick->min_jacobian >= kRepairedSure ||
+         quantised(pick->min_jacobian) >= quantised(sharpest_sine(face.cycle))))
+      continue;
     if ((k == 2 || k == 3) && face.cycle.size() > kFanSplitMax) continue;
     if (k == 5 && best_worst >= quantised(kReflexSkipAbove)) continue;
     std::optional<FaceMesh> m = k < 2   ? fill_split(face, static_cast<std::uint32_t>(k))
@@ -2295,13 +2351,23 @@ std::optional<FaceMesh> pick_unstructured(const FaceInput& face, bool fans, int 
                                 : k < 6 ? fill_reflex(face, depth)
                                 : k < 8 ? fill_lattice(face, static_cast<std::uint32_t>(k - 6))
                                         : fill_match(face);
+    const bool repaired = huge && (k == 6 || k == 7) && m && m->min_jacobian < kAcceptJacobian &&
+                          repair_lattice(face, *m, best_worst);
     if (k == 8 && m && !match_ok(*m, face, pick, best_worst)) continue;
     if (m && m->min_jacobian >= kAcceptJacobian) {
       best_worst = std::max(best_worst, quantised(m->min_jacobian));
       const double shape = whole_steps(mean_shape(*m, face), kShapeStep);
-      if (!pick || shape > pick_shape) {
+      // A repaired lattice against quads a whole step better or worse in their worst corner.
+      const int steps = pick ? (quantised(m->min_jacobian) > quantised(pick->min_jacobian)   ? 1
+                                : quantised(m->min_jacobian) < quantised(pick->min_jacobian) ? -1
+                                                                                             : 0)
+                             : 0;
+      const bool better = !pick || (pick_repaired && steps > 0) ||
+                          (shape > pick_shape && !(repaired && steps < 0));
+      if (better) {
         pick = *m;
         pick_shape = shape;
+        pick_repaired = repaired;
       }
     }
     consider(std::move(m));

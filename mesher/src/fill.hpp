@@ -144,6 +144,12 @@ FaceMesh fill_face(const FaceInput& face, const std::string& where, bool needle_
 /// valid quads.
 std::optional<FaceMesh> fill_cavity(const FaceInput& face);
 
+/// The re-fill's passes (refill_cavities) on one face's quads, `cycle` its boundary nodes
+/// (held), `m` its quads: the quads below `below` re-filled where that beats their relaxation.
+/// Returns the count of cavities kept; m is renumbered (cycle nodes first, as before), its
+/// min_jacobian not updated.
+std::size_t refill_face(const std::vector<Vec2>& cycle, FaceMesh& m, double below, int iterations);
+
 /// The needle-tip attempt's last resort (fill_face with needle_tips, where no template's
 /// quads are above the face's bar): cut by chords as the cut template is, and where a piece
 /// is a needle's tip, the corner cut off as a kite through one new node (FillKind::Kites).
