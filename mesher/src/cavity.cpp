@@ -796,26 +796,6 @@ class PatchRefill {
     return key;
   }
 
-  /// The least settled scaled Jacobian of the corners of l's ring quads (those from
-  /// `first_ring`) whose node and both neighbours are held: a cycle node (local id below n)
-  /// that is pinned, or one of the ring's outer nodes (local id `outer` and above). A quad all
-  /// of whose nodes are held is skipped (no relaxation moves it, and none counts it).
-  double held_corner(const Local& l, std::size_t first_ring, std::size_t n, std::size_t outer,
-                     const std::vector<std::uint32_t>& cycle) const {
-    const auto held = [&](std::uint32_t v) { return v < n ? bool(pq_.fixed[cycle[v]]) : v >= outer; };
-    double least = std::numeric_limits<double>::infinity();
-    for (std::size_t k = first_ring; k < l.quads.size(); ++k) {
-      const Quad& q = l.quads[k];
-      if (std::all_of(q.begin(), q.end(), held)) continue;
-      for (std::size_t i = 0; i < 4; ++i) {
-        const std::uint32_t at = q[i], next = q[(i + 1) % 4], prev = q[(i + 3) % 4];
-        if (held(at) && held(next) && held(prev))
-          least = std::min(least, settled(corner_jacobian(l.pos[at], l.pos[next], l.pos[prev])));
-      }
-    }
-    return least;
-  }
-
   /// The fill of a cavity and its judgement (plan_cavity): the new quads, relaxed with the
   /// ring, kept when their worst beats the old quads' relaxed alike by kRefillGain.
   std::shared_ptr<const CavityMemo::Answer> refill_answer(const FaceInput& face,
@@ -833,16 +813,6 @@ class PatchRefill {
     // seed 47047's hull_020) a quarter of the cavities end here and a tenth at the fill.
     const Local was = relaxed(face.cycle, cycle, old_inner, old_quads, ring, cf);
     if (was.worst >= below_ || bound < was.worst + kRefillGain) return answer;
-    // A corner of a ring quad whose node and both neighbours are held (pinned cycle nodes, the
-    // ring's outer nodes) is the same however the cavity is filled and relaxed, and the fill's
-    // worst counts that quad when the relaxation moves it: where such a corner is below the
-    // old quads' worst + kRefillGain, no fill is tried (session 50; taken as counted whether
-    // or not the quad would move: of the 402 set meshes one changes, cyl_96_tri_fan, taper
-    // 11.70% -> 11.62%; on the wiggly outline at --size 2.5, 2,266 fills and relaxations
-    // saved, the re-fill 3.3 -> 2.6 s on one thread, taper 2.6% -> 2.4%).
-    if (held_corner(was, old_quads.size(), n, n + old_inner.size(), cycle) <
-        settled(was.worst) + kRefillGain)
-      return answer;
     const std::optional<FaceMesh> filled = fill_cavity(face);
     if (!filled) return answer;
     const FaceMesh& fm = *filled;
