@@ -256,6 +256,19 @@ class PatchRefill {
 
   const std::vector<bool>& alive() const { return alive_; }
 
+  /// The passes: up to kRefillPasses (each after the first only near what the one before
+  /// changed, none after one that kept nothing), then the poles' pass. Returns the count kept.
+  std::size_t passes() {
+    std::size_t kept = 0;
+    int pass = 0;
+    for (; pass < kRefillPasses; ++pass) {
+      const std::size_t more = run(pass);
+      kept += more;
+      if (more == 0) break;
+    }
+    return kept + run(pass, true);
+  }
+
   /// The whole patch as one cavity (whole_plan), before the passes; 1 when kept.
   std::size_t whole() {
     std::vector<std::uint32_t> cavity;
@@ -1161,14 +1174,7 @@ std::size_t refill_face(const std::vector<Vec2>& cycle, FaceMesh& m, double belo
   pq.quads = m.quads;
   CavityMemo memo;
   PatchRefill refill(pq, iterations, below, false, memo);
-  std::size_t kept = 0;
-  int pass = 0;
-  for (; pass < kRefillPasses; ++pass) {
-    const std::size_t more = refill.run(pass);
-    kept += more;
-    if (more == 0) break;
-  }
-  kept += refill.run(pass, true);
+  const std::size_t kept = refill.passes();
   if (kept == 0) return 0;
   // The live quads over the cycle's ids and the inner nodes they use, renumbered in order.
   const std::vector<bool>& alive = refill.alive();
@@ -1219,13 +1225,7 @@ std::size_t refill_cavities(
     PatchRefill refill(r.pq, iterations, below, inner && r.pq.quads.size() >= kRefillParallelQuads,
                        memo);
     r.regrids = refill.whole();
-    int pass = 0;
-    for (; pass < kRefillPasses; ++pass) {
-      const std::size_t more = refill.run(pass);
-      r.kept += more;
-      if (more == 0) break;
-    }
-    r.kept += refill.run(pass, true);
+    r.kept = refill.passes();
     r.regrids += refill.regrid();
     if (r.kept + r.regrids > 0) r.alive = refill.alive();
   });

@@ -159,9 +159,6 @@ struct Builder {
 /// relax() does nothing while fill_cavity runs: the cavity's caller relaxes the quads it
 /// keeps with the quads round them (and the templates' own sweeps were most of its time).
 thread_local bool relax_off = false;
-/// Set while a huge face's lattice is repaired (repair_lattice): the re-fill's own fills are
-/// not repaired in turn.
-thread_local bool in_face_refill = false;
 /// The relaxation sweeps of each kind a repaired lattice's cavities get (refill_face), as the
 /// re-fill's cavities get at most kRefillSweeps.
 constexpr int kFaceRefillSweeps = 4;
@@ -2267,15 +2264,13 @@ constexpr std::size_t kFanSplitMax = 24;
 /// either, and until session 50 its lattice lost to the match (0.1-1 s a face, mean shape
 /// 0.85-0.92 against the lattice's 0.95-0.99). The repaired quads replace m when their worst
 /// corner is acceptable and no whole kChoiceStep below `best_worst`, the best of the templates
-/// before (as the match's must be: match_ok); true then. Not inside a re-fill's own fills.
+/// before (as the match's must be: match_ok); true then. The re-fill's own fills go through
+/// fill_cavity, whose templates are never a huge face's (pick_unstructured without `fans`),
+/// so no repair runs inside another.
 bool repair_lattice(const FaceInput& face, FaceMesh& m, double best_worst) {
-  if (relax_off || in_face_refill) return false;
-  const auto n = static_cast<std::uint32_t>(face.cycle.size());
   FaceMesh repaired = m;
-  in_face_refill = true;
-  const std::size_t kept = refill_face(face.cycle, repaired, kAcceptJacobian, kFaceRefillSweeps);
-  in_face_refill = false;
-  if (kept == 0) return false;
+  if (refill_face(face.cycle, repaired, kAcceptJacobian, kFaceRefillSweeps) == 0) return false;
+  const std::size_t n = face.cycle.size();
   repaired.min_jacobian = face_score(
       repaired.quads, [&](std::uint32_t i) { return i < n ? face.cycle[i] : repaired.interior[i - n]; },
       face);
@@ -2334,14 +2329,15 @@ std::optional<FaceMesh> pick_unstructured(const FaceInput& face, bool fans, int 
   double pick_shape = 0.0, best_worst = -1e9;
   bool pick_repaired = false;
   const bool huge = fans && face.cycle.size() > kHugeFace;
-  constexpr int kOrder[9] = {0, 1, 2, 3, 4, 5, 6, 7, 8};
   constexpr int kHugeOrder[9] = {6, 7, 0, 1, 2, 3, 4, 5, 8};
+  // No template's worst corner is above the sine of the face's sharpest corner.
+  const double outline_bound = huge ? quantised(sharpest_sine(face.cycle)) : 0.0;
   for (int step = 0; step < 9; ++step) {
-    const int k = huge ? kHugeOrder[step] : kOrder[step];
+    const int k = huge ? kHugeOrder[step] : step;
     if (!fans && (k == 2 || k == 3 || k >= 5)) continue;
     if (huge && (k < 2 || k == 8) && pick && pick_shape >= whole_steps(kHugeFaceShape, kShapeStep) &&
         (!pick_repaired || pick->min_jacobian >= kRepairedSure ||
-         quantised(pick->min_jacobian) >= quantised(sharpest_sine(face.cycle))))
+         quantised(pick->min_jacobian) >= outline_bound))
       continue;
     if ((k == 2 || k == 3) && face.cycle.size() > kFanSplitMax) continue;
     if (k == 5 && best_worst >= quantised(kReflexSkipAbove)) continue;
@@ -2358,12 +2354,8 @@ std::optional<FaceMesh> pick_unstructured(const FaceInput& face, bool fans, int 
       best_worst = std::max(best_worst, quantised(m->min_jacobian));
       const double shape = whole_steps(mean_shape(*m, face), kShapeStep);
       // A repaired lattice against quads a whole step better or worse in their worst corner.
-      const int steps = pick ? (quantised(m->min_jacobian) > quantised(pick->min_jacobian)   ? 1
-                                : quantised(m->min_jacobian) < quantised(pick->min_jacobian) ? -1
-                                                                                             : 0)
-                             : 0;
-      const bool better = !pick || (pick_repaired && steps > 0) ||
-                          (shape > pick_shape && !(repaired && steps < 0));
+      const double qm = quantised(m->min_jacobian), qp = pick ? quantised(pick->min_jacobian) : qm;
+      const bool better = !pick || (pick_repaired && qm > qp) || (shape > pick_shape && !(repaired && qm < qp));
       if (better) {
         pick = *m;
         pick_shape = shape;
