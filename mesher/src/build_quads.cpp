@@ -224,6 +224,7 @@ class QuadBuilder {
         law_(options.adaptive),
         sliver_caps_(options.drop_sliver_caps),
         needle_tips_(options.needle_tips),
+        face_memo_(options.face_memo),
         split_pieces_(options.split_pieces) {
     if (!(h_ > 0.0) && !law_) throw InternalError("mesher: the element size must be positive");
   }
@@ -1960,7 +1961,8 @@ class QuadBuilder {
       parallel_for(which.size(), [&](std::size_t w) {
         const auto [p, f] = jobs[which[w]];
         try {
-          filled[p][f] = fill_face(pending[p][f].in, pending[p][f].where, needle_tips_);
+          filled[p][f] =
+              fill_face(pending[p][f].in, pending[p][f].where, needle_tips_, face_memo_);
         } catch (const InternalError& e) {
           if (!needle_tips_) throw;
           throw UnfilledFace(e.what(), pending[p][f].where, pending[p][f].in.cycle.size(),
@@ -2224,6 +2226,7 @@ class QuadBuilder {
   const TrackWidthLaw* law_ = nullptr;
   bool sliver_caps_ = false;  ///< QuadOptions::drop_sliver_caps
   bool needle_tips_ = false;  ///< QuadOptions::needle_tips
+  mesher_detail::FaceFillMemo* face_memo_ = nullptr;  ///< QuadOptions::face_memo
   std::vector<PieceRef> split_pieces_;  ///< QuadOptions::split_pieces
   /// Per arc, its discretisation edges: parameters of the edge's a and b along the arc.
   std::vector<std::vector<std::tuple<double, double, EdgeId>>> arc_edges_;

@@ -15,14 +15,13 @@
 #include <cstdlib>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
-#include <unordered_map>
 
 #include "fill.hpp"
 #include "laytracks/mesher/build_quads.hpp"
 #include "laytracks/mesher/quality.hpp"
+#include "memo.hpp"
 #include "patch_quads.hpp"
 #include "regrid.hpp"
 
@@ -180,36 +179,27 @@ class CavityMemo {
   /// The answer to `key`'s problem: the one remembered, else compute()'s (then remembered).
   template <class Compute>
   std::shared_ptr<const Answer> answer(std::string key, Compute compute) {
-    if (std::shared_ptr<const Answer> known = find(key)) return known;
+    if (g_memo_on) {
+      if (std::shared_ptr<const Answer> known = answers_.find(key)) {
+        ++g_memo_hits;
+        return known;
+      }
+    }
     std::shared_ptr<const Answer> computed = compute();
-    insert(std::move(key), computed);
+    if (g_memo_on) {
+      const std::size_t bytes = key.size() + computed->pos.size() * sizeof(Vec2) +
+                                computed->quads.size() * sizeof(Quad);
+      answers_.insert(std::move(key), computed, bytes);
+    }
     return computed;
   }
 
  private:
-  std::shared_ptr<const Answer> find(const std::string& key) const {
-    if (!g_memo_on) return nullptr;
-    const std::lock_guard<std::mutex> lock(mutex_);
-    const auto it = answers_.find(key);
-    if (it == answers_.end()) return nullptr;
-    ++g_memo_hits;
-    return it->second;
-  }
-  void insert(std::string key, std::shared_ptr<const Answer> answer) {
-    if (!g_memo_on) return;
-    const std::lock_guard<std::mutex> lock(mutex_);
-    if (bytes_ > kMemoBytes) return;  // full: the answers are only computed again
-    bytes_ += key.size() + answer->pos.size() * sizeof(Vec2) + answer->quads.size() * sizeof(Quad);
-    answers_.emplace(std::move(key), std::move(answer));
-  }
-
   /// The memo's bound (keys and positions), far above what it holds: the peak memory of
   /// torus_48_16_tri (1,536 facets, 60,463 quads) grows 76.1 -> 76.8 MB with it, of the tray
   /// at h = 0.25 (303,000 quads) 140.6 -> 143.6 MB.
   static constexpr std::size_t kMemoBytes = std::size_t{64} << 20;
-  mutable std::mutex mutex_;
-  std::unordered_map<std::string, std::shared_ptr<const Answer>> answers_;
-  std::size_t bytes_ = 0;
+  LockedMemo<Answer> answers_{kMemoBytes};
 };
 
 class PatchRefill {

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -131,10 +132,34 @@ bool segments_meet(Vec2 p, Vec2 q, Vec2 r, Vec2 t);
 /// Whether x lies inside the polygon `poly` (the even-odd rule).
 bool inside_polygon(Vec2 x, const std::vector<Vec2>& poly);
 
+/// The templates' quads of the faces mesh_part's attempts fill, by the bytes of each face (its
+/// cycle, sides and free nodes: all the templates read). After a face that no template fills,
+/// the next attempt (drop_sliver_caps, then needle_tips) lays the rails again and meets most
+/// faces unchanged: they take the quads the templates gave them before, the same to the bit.
+/// Faces filled by a grid or as one quad are not held (they cost less than their key).
+/// Shared by the threads that fill faces.
+class FaceFillMemo {
+ public:
+  FaceFillMemo();
+  ~FaceFillMemo();
+  FaceFillMemo(const FaceFillMemo&) = delete;
+  FaceFillMemo& operator=(const FaceFillMemo&) = delete;
+  /// The templates' quads for `face`: remembered, else computed (and remembered).
+  std::optional<FaceMesh> fill(const FaceInput& face);
+
+ private:
+  struct Held;
+  std::unique_ptr<Held> held_;
+};
+
 /// Meshes one face: the first template that applies and gives quads whose scaled Jacobian is
 /// above kAcceptJacobian wins; otherwise the best valid one. Throws InternalError (with `where`
-/// in the message) when no template gives valid quads.
-FaceMesh fill_face(const FaceInput& face, const std::string& where, bool needle_tips = false);
+/// in the message) when no template gives valid quads. With `memo`, the templates' quads are
+/// looked for there first.
+FaceMesh fill_face(const FaceInput& face,
+                   const std::string& where,
+                   bool needle_tips = false,
+                   FaceFillMemo* memo = nullptr);
 
 /// The quads of a cavity of a finished mesh (a polygon of any shape, read as one boundary
 /// side): the quad and ring templates, corner grids, then split from either parity and cut

@@ -189,6 +189,10 @@ MeshPartResult mesh_part_unchecked_input(const Part& part,
   // mesh edge given two more edges (the needle whose one side is a single long edge, the other
   // bent at reflex vertices that each need an inner edge), up to kPieceSplits times
   // (docs/mesher.md, "Split boundary pieces").
+  // The attempts after the first meet most faces unchanged: they take the quads the
+  // templates gave them before (the same to the bit; docs/mesher.md, "Retried faces").
+  auto face_memo = std::make_unique<mesher_detail::FaceFillMemo>();
+  qo.face_memo = face_memo.get();
   QuadResult quads;
   std::exception_ptr first_failure;
   int splits = 0;
@@ -216,6 +220,8 @@ MeshPartResult mesh_part_unchecked_input(const Part& part,
       ++attempt;
     }
   }
+  qo.face_memo = nullptr;
+  face_memo.reset();  // its quads are in the mesh now
   quads.stats.split_pieces = static_cast<std::size_t>(splits);
   r.mesh = std::move(quads.mesh);
   r.stats = quads.stats;

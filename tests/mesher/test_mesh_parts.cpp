@@ -1090,6 +1090,24 @@ TEST_CASE("the re-fill's memo changes no mesh", "[mesh][refill][determinism]") {
   }
 }
 
+TEST_CASE("a retried part's faces take their earlier fills, and the mesh is the same",
+          "[mesh][determinism]") {
+  // needle_tip_blob.json (fuzz seed 33033): no template fills a face with a needle's tip in
+  // the first two attempts, and the third (needle_tips) lays the rails again. Most faces come
+  // back unchanged; those the unstructured templates filled take the quads they got before
+  // (FaceFillMemo), which must be the quads the templates would give again, to the bit.
+  const Part part = build_part(read_brep_json(test_data_dir() + "/parts/needle_tip_blob.json"));
+  set_face_fill_memo(false);
+  const std::size_t hits_before = face_fill_memo_hits();
+  const MeshPartResult off = mesh_part(part, MeshPartOptions{});
+  CHECK(face_fill_memo_hits() == hits_before);
+  set_face_fill_memo(true);
+  const MeshPartResult on = mesh_part(part, MeshPartOptions{});
+  CHECK(face_fill_memo_hits() - hits_before >= 20);
+  REQUIRE(off.check.valid());
+  CHECK(same_mesh(off.mesh, on.mesh));
+}
+
 TEST_CASE("the facets of a jittered icosphere are filled again whole, as three grids",
           "[mesh][refill][regrid]") {
   // jico1_jittered.json: 80 triangles, 30 quads each. The rails of the neighbours cross every

@@ -17,6 +17,10 @@
 
 namespace laytracks {
 
+namespace mesher_detail {
+class FaceFillMemo;  // fill.hpp
+}
+
 /// A piece of a B-Rep edge between two boundary nodes that are ends of rails or vertices, as
 /// build_quads numbers them: its unit (a straight edge, or a whole arc) and its place along it.
 /// Meaningful only to build_quads with the same part, cut graph and options.
@@ -41,6 +45,9 @@ struct QuadOptions {
   /// the parity is made even (two more keep it): mesh_part's answer to an UnfilledFace in the
   /// third attempt (docs/mesher.md, "Split boundary pieces").
   std::vector<PieceRef> split_pieces;
+  /// The faces' fills of earlier attempts (mesh_part keeps one across its attempts); may be
+  /// null. Must outlive the call.
+  mesher_detail::FaceFillMemo* face_memo = nullptr;
 };
 
 /// build_quads' error when no template fills a face in the third attempt
@@ -204,6 +211,14 @@ void set_cavity_memo(bool on);
 /// How many cavities the memo has answered so far in this process (on several threads the
 /// count depends on their timing, the meshes do not).
 std::size_t cavity_memo_hits();
+
+/// mesh_part's attempts after a face that no template fills take the quads the templates
+/// gave a face in an earlier attempt when they meet it again unchanged, to the bit
+/// (docs/mesher.md, "Retried faces"). On unless turned off here, which the tests do to check
+/// that the meshes are the same without it.
+void set_face_fill_memo(bool on);
+/// How many faces took remembered quads so far in this process.
+std::size_t face_fill_memo_hits();
 
 /// build_quads shares the quads of small faces (6-31 nodes) that are an earlier face turned,
 /// scaled and shifted, its cycle from the same node (docs/mesher.md, "Repeated faces"): the
