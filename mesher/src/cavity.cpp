@@ -88,6 +88,13 @@ constexpr double kRegridCountRatio = 1.5;
 /// tapered in all), and elsewhere the mesh's worst corner is not traded.
 constexpr double kRegridLowFloor = 0.6;
 constexpr double kRegridMostDrop = 0.03;
+/// A regrid cavity that holds every quad at a pinned node (the patch's outline there) may give
+/// that node another count of quads: the k of 1 to 3 whose corners a / k (a the outline's
+/// angle there) have the largest sine, where that sine beats the present count's by at least
+/// kRecountGain (session 51). The outline's vertices keep the counts the rails gave them,
+/// and a reflex corner of 270 degrees in two quads of 135, or a vertex of 150 degrees in one
+/// quad, left every fill of the cavities round it tapered.
+constexpr double kRecountGain = 0.05;
 /// A round cavity's O-grids (round_plan): the layers nearest its count and this many - 1 more.
 constexpr std::size_t kRoundLayers = 2;
 /// Whole patches (whole_plan): a patch of at most kWholeQuads quads whose outline has three,
@@ -525,7 +532,7 @@ class PatchRefill {
   Attempt regrid_attempt(std::uint32_t v) const {
     Attempt t;
     t.reads = {v};
-    if (around_[v].empty() || around_[v].size() == 4) return t;
+    if (!regrid_candidate(v)) return t;
     std::vector<std::uint32_t> region = around_[v];
     std::sort(region.begin(), region.end());
     std::vector<std::uint32_t> looked;
@@ -840,6 +847,36 @@ class PatchRefill {
     return answer;
   }
 
+  /// The count of a regrid cavity's quads that its fill gives cycle node v, which has `in`
+  /// of them now: `in`, but at a pinned node whose every quad is in the cavity, the count of
+  /// 1 to 3 whose corners have the largest sine, when it beats `in`'s by kRecountGain
+  /// (settled: the outline's angle is the same in every pose up to rounding).
+  std::size_t fill_count(std::uint32_t v, std::size_t in) const {
+    if (!pq_.fixed[v] || in != around_[v].size() || in == 0) return in;
+    double a = 0.0;
+    for (std::uint32_t q : around_[v]) {
+      const Quad& x = pq_.quads[q];
+      const std::size_t k = static_cast<std::size_t>(std::find(x.begin(), x.end(), v) - x.begin());
+      a += interior_angle({pq_.pos[x[0]], pq_.pos[x[1]], pq_.pos[x[2]], pq_.pos[x[3]]}, k);
+    }
+    const auto best_sine = [a](std::size_t k) {
+      const double c = a / static_cast<double>(k);
+      return c < kPi ? std::sin(c) : -1.0;
+    };
+    std::size_t best = in;
+    for (std::size_t k = 1; k <= 3; ++k)
+      if (settled(best_sine(k)) >= settled(best_sine(best) + kRecountGain)) best = k;
+    return best;
+  }
+
+  /// Whether the regrid starts at node v: an irregular inner node (not in four quads), or a
+  /// pinned one whose count of quads fill_count would change.
+  bool regrid_candidate(std::uint32_t v) const {
+    const std::size_t count = around_[v].size();
+    if (count == 0) return false;
+    return pq_.fixed[v] ? fill_count(v, count) != count : count != 4;
+  }
+
   /// Whether regrid_plan could fill the cavity, read from the counts alone (no cycle built):
   /// its boundary nodes' quads in it turn by 4 round it with an irregular inner node, or by 3
   /// or 5 with two and no reflex node; and a quad of it is tapered. Most rings fail here.
@@ -849,7 +886,7 @@ class PatchRefill {
     seen.clear(pq_.pos.size());
     for (std::uint32_t q : cavity) in_cavity.insert(q);
     int turning = 0;
-    std::size_t irregular = 0, reflex = 0;
+    std::size_t irregular = 0, reflex = 0, recounted = 0;
     for (std::uint32_t q : cavity)
       for (std::uint32_t v : pq_.quads[q]) {
         if (seen.contains(v)) continue;
@@ -860,13 +897,19 @@ class PatchRefill {
           irregular += in != 4 ? 1u : 0u;
           continue;
         }
+        const std::size_t count = fill_count(v, in);
+        recounted += count != in ? 1u : 0u;
+        in = count;
         if (in > 3) return false;
         turning += 2 - static_cast<int>(in);
         reflex += in == 3 ? 1u : 0u;
       }
-    const bool lattice = turning == 4 && irregular >= 1;
-    const bool sided = (turning == 3 || turning == 5) && irregular >= 2 && reflex == 0;
-    const bool round = turning == 0 && irregular >= 1 && reflex == 0;
+    // What the fill would mend: the irregular inner nodes and the recounted pinned ones (a
+    // sided fill keeps one irregular node, its centre).
+    const std::size_t mended = irregular + recounted;
+    const bool lattice = turning == 4 && mended >= 1;
+    const bool sided = (turning == 3 || turning == 5) && mended >= 2 && reflex == 0;
+    const bool round = turning == 0 && mended >= 1 && reflex == 0;
     if (!lattice && !sided && !round) return false;
     // A cavity with no tapered quad has nothing to gain (and most have none). Settled: a
     // trapezoid of sides 2 and 3 (rows of a triangle's grid) has a taper of 0.8 exactly, and
@@ -898,11 +941,14 @@ class PatchRefill {
     // The turns worth_regrid added up (and checked, with the irregular inner nodes), per node.
     std::vector<int> turn(n);
     int turning = 0;
+    bool recounted = false;
     for (std::size_t i = 0; i < n; ++i) {
-      const auto count = std::count_if(
+      const auto count = static_cast<std::size_t>(std::count_if(
           around_[cycle[i]].begin(), around_[cycle[i]].end(),
-          [&](std::uint32_t o) { return std::binary_search(cavity.begin(), cavity.end(), o); });
-      turn[i] = 2 - static_cast<int>(count);
+          [&](std::uint32_t o) { return std::binary_search(cavity.begin(), cavity.end(), o); }));
+      const std::size_t given = fill_count(cycle[i], count);
+      recounted = recounted || given != count;
+      turn[i] = 2 - static_cast<int>(given);
       turning += turn[i];
     }
     const Posed old = posed(cavity, cycle, inner);
@@ -916,10 +962,14 @@ class PatchRefill {
                     cavity.size(), inner.size(), turning);
       return std::string(line);
     };
-    if (turning == 0) return round_plan(cavity, cycle, turn, old, log, header);
+    if (turning == 0) return round_plan(cavity, cycle, turn, old, log, header, recounted);
     std::optional<TurnFill> fill = turning == 4 ? lattice_fill(turn) : sided_fill(turn);
     if (!fill || !count_ok(*fill, cavity.size(), kRegridCountRatio)) return std::nullopt;
-    return judged_grid("regrid", std::move(*fill), cavity, cycle, old, false, log, header);
+    // The turns are part of the problem: a pinned node's count (fill_count) reads the outline's
+    // angle in the patch's frame, which the posed positions of the key hold only to rounding.
+    std::string kind = "regrid";
+    kind.append(reinterpret_cast<const char*>(turn.data()), turn.size() * sizeof(int));
+    return judged_grid(kind, std::move(*fill), cavity, cycle, old, false, log, header, recounted);
   }
 
   /// `plan` in `best`'s place when it untapers more (the first kept on ties).
@@ -937,7 +987,8 @@ class PatchRefill {
                                  const std::vector<int>& turn,
                                  const Posed& old,
                                  std::string& log,
-                                 Header header) const {
+                                 Header header,
+                                 bool recounted) const {
     const std::size_t n = cycle.size();
     const std::size_t core = (n / 4) * (n / 2 - n / 4);
     // The layers whose count is nearest the cavity's (at least one).
@@ -949,10 +1000,10 @@ class PatchRefill {
         std::optional<TurnFill> fill = ogrid_fill(turn, static_cast<std::uint32_t>(layers + more),
                                                   static_cast<std::uint32_t>(start));
         if (!fill || !count_ok(*fill, cavity.size(), kRegridCountRatio)) continue;
-        const std::string kind =
-            "ogrid " + std::to_string(layers + more) + " " + std::to_string(start) + " ";
+        const std::string kind = "ogrid " + std::to_string(layers + more) + " " +
+                                 std::to_string(start) + (recounted ? " recounted " : " ");
         std::optional<Plan> plan =
-            judged_grid(kind, std::move(*fill), cavity, cycle, old, false, log, header);
+            judged_grid(kind, std::move(*fill), cavity, cycle, old, false, log, header, recounted);
         keep_most_gain(best, std::move(plan));
       }
     if (best) best->round = true;
@@ -977,13 +1028,14 @@ class PatchRefill {
                                   const Posed& old,
                                   bool every_measure,
                                   std::string& log,
-                                  Header header) const {
+                                  Header header,
+                                  bool no_more_skewed = false) const {
     const std::vector<std::uint32_t> ring = ring_of(cavity, cycle);
     // The answer depends on how low the regrid may go (regrid_low_), which is the patch's.
     std::string key = kind + problem_key(old.cycle, cycle, old.inner, old.quads, ring, old.cf);
     if (!every_measure) key.append(reinterpret_cast<const char*>(&regrid_low_), sizeof regrid_low_);
     const std::shared_ptr<const CavityMemo::Answer> answer = memo_.answer(std::move(key), [&] {
-      return regrid_answer(std::move(fill), old, cycle, ring, every_measure);
+      return regrid_answer(std::move(fill), old, cycle, ring, every_measure, no_more_skewed);
     });
     static const bool debug = std::getenv("LAYTRACKS_DEBUG_CAVITY") != nullptr;
     if (debug && !answer->log.empty()) log += header() + answer->log;
@@ -1022,7 +1074,8 @@ class PatchRefill {
                                                           const Posed& old,
                                                           const std::vector<std::uint32_t>& cycle,
                                                           const std::vector<std::uint32_t>& ring,
-                                                          bool every_measure = false) const {
+                                                          bool every_measure = false,
+                                                          bool no_more_skewed = false) const {
     auto answer = std::make_shared<CavityMemo::Answer>();
     const std::size_t n = cycle.size();
     const LocalFrame& cf = old.cf;
@@ -1059,8 +1112,12 @@ class PatchRefill {
         !every_measure && settled(now.worst) >= std::min(floor, regrid_low_) &&
         settled(now.worst) >= floor - kRegridMostDrop &&
         beyond(now, fill.quads.size(), true) <= beyond(was, old.quads.size(), true);
-    answer->keep =
-        t_now < t_was && now.worst > kMinValidJacobian && (settled(now.worst) >= floor || lower_ok);
+    // A fill that gives a pinned node another count (fill_count) trades that node's corners
+    // for the cavity's: no more of its quads may be skewed or stretched.
+    const bool skew_ok =
+        !no_more_skewed || beyond(now, fill.quads.size(), true) <= beyond(was, old.quads.size(), true);
+    answer->keep = t_now < t_was && now.worst > kMinValidJacobian && skew_ok &&
+                   (settled(now.worst) >= floor || lower_ok);
     static const bool debug = std::getenv("LAYTRACKS_DEBUG_CAVITY") != nullptr;
     if (debug) {
       char line[200];
@@ -1085,7 +1142,7 @@ class PatchRefill {
         std::max(kRegridLowFloor, settled(outline_bound(pq_.pos, pq_.fixed, pq_.quads, &alive_)));
     std::vector<std::uint32_t> candidates;
     for (std::uint32_t v = 0; v < pq_.pos.size(); ++v)
-      if (!pq_.fixed[v] && !around_[v].empty() && around_[v].size() != 4) candidates.push_back(v);
+      if (regrid_candidate(v)) candidates.push_back(v);
     return in_batches(
         candidates.size(), [&](std::size_t k) { return regrid_attempt(candidates[k]); },
         kRefillPasses + 1);
