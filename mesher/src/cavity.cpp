@@ -880,7 +880,9 @@ class PatchRefill {
   /// Whether regrid_plan could fill the cavity, read from the counts alone (no cycle built):
   /// its boundary nodes' quads in it turn by 4 round it with an irregular inner node, or by 3
   /// or 5 with two and no reflex node; and a quad of it is tapered. Most rings fail here.
-  bool worth_regrid(const std::vector<std::uint32_t>& cavity) const {
+  /// With `recount`, the pinned nodes' counts are fill_count's. -1 when not worth a fill, 0
+  /// when worth it with no count changed, 1 when worth it with some recounted.
+  int worth_regrid(const std::vector<std::uint32_t>& cavity, bool recount) const {
     thread_local Marks in_cavity, seen;
     in_cavity.clear(pq_.quads.size());
     seen.clear(pq_.pos.size());
@@ -897,10 +899,10 @@ class PatchRefill {
           irregular += in != 4 ? 1u : 0u;
           continue;
         }
-        const std::size_t count = fill_count(v, in);
+        const std::size_t count = recount ? fill_count(v, in) : in;
         recounted += count != in ? 1u : 0u;
         in = count;
-        if (in > 3) return false;
+        if (in > 3) return -1;
         turning += 2 - static_cast<int>(in);
         reflex += in == 3 ? 1u : 0u;
       }
@@ -910,15 +912,16 @@ class PatchRefill {
     const bool lattice = turning == 4 && mended >= 1;
     const bool sided = (turning == 3 || turning == 5) && mended >= 2 && reflex == 0;
     const bool round = turning == 0 && mended >= 1 && reflex == 0;
-    if (!lattice && !sided && !round) return false;
+    if (!lattice && !sided && !round) return -1;
     // A cavity with no tapered quad has nothing to gain (and most have none). Settled: a
     // trapezoid of sides 2 and 3 (rows of a triangle's grid) has a taper of 0.8 exactly, and
     // the pose's rounding must not decide.
-    return std::any_of(cavity.begin(), cavity.end(), [&](std::uint32_t q) {
+    const bool tapered = std::any_of(cavity.begin(), cavity.end(), [&](std::uint32_t q) {
       const Quad& x = pq_.quads[q];
       return settled(quad_taper(pq_.pos[x[0]], pq_.pos[x[1]], pq_.pos[x[2]], pq_.pos[x[3]])) <=
              settled(QualityThresholds::kTaper);
     });
+    return !tapered ? -1 : recounted > 0 ? 1 : 0;
   }
 
   /// The cavity filled with fewer irregular nodes (not in four quads) than it has inside:
@@ -930,7 +933,20 @@ class PatchRefill {
   /// kRegridCountRatio.
   std::optional<Plan> regrid_plan(const std::vector<std::uint32_t>& cavity,
                                   std::string& log) const {
-    if (!worth_regrid(cavity)) return std::nullopt;
+    // With the pinned nodes recounted first; where that changes a count but gives no fill that
+    // is kept, with the counts as they are (a recount must not cost a regrid the cavity had).
+    const int recounting = worth_regrid(cavity, true);
+    std::optional<Plan> plan;
+    if (recounting >= 0) plan = regrid_counted(cavity, recounting > 0, log);
+    if (!plan && recounting != 0 && worth_regrid(cavity, false) >= 0)
+      plan = regrid_counted(cavity, false, log);
+    return plan;
+  }
+
+  /// regrid_plan's fill with the counts as they are, or with fill_count's (`recount`).
+  std::optional<Plan> regrid_counted(const std::vector<std::uint32_t>& cavity,
+                                     bool recount,
+                                     std::string& log) const {
     const std::optional<std::vector<std::uint32_t>> found = cavity_cycle(cavity);
     if (!found) return std::nullopt;
     const std::vector<std::uint32_t>& cycle = *found;
@@ -946,7 +962,7 @@ class PatchRefill {
       const auto count = static_cast<std::size_t>(std::count_if(
           around_[cycle[i]].begin(), around_[cycle[i]].end(),
           [&](std::uint32_t o) { return std::binary_search(cavity.begin(), cavity.end(), o); }));
-      const std::size_t given = fill_count(cycle[i], count);
+      const std::size_t given = recount ? fill_count(cycle[i], count) : count;
       recounted = recounted || given != count;
       turn[i] = 2 - static_cast<int>(given);
       turning += turn[i];
