@@ -799,9 +799,10 @@ class PatchRefill {
     std::vector<bool> fixed;
     const Local l = local_problem(cycle_pos, cycle, inner_pos, cavity_quads, ring, cf, fixed);
     const std::size_t counts[3] = {cycle.size(), inner_pos.size(), cavity_quads.size()};
-    std::string key(reinterpret_cast<const char*>(counts), sizeof counts);
-    key.append(reinterpret_cast<const char*>(l.pos.data()), l.pos.size() * sizeof(Vec2));
-    key.append(reinterpret_cast<const char*>(l.quads.data()), l.quads.size() * sizeof(Quad));
+    std::string key;
+    append_bytes(key, counts);
+    append_bytes(key, l.pos);
+    append_bytes(key, l.quads);
     for (std::size_t i = 0; i < cycle.size(); ++i) key.push_back(fixed[i] ? '1' : '0');
     return key;
   }
@@ -853,12 +854,7 @@ class PatchRefill {
   /// (settled: the outline's angle is the same in every pose up to rounding).
   std::size_t fill_count(std::uint32_t v, std::size_t in) const {
     if (!pq_.fixed[v] || in != around_[v].size() || in == 0) return in;
-    double a = 0.0;
-    for (std::uint32_t q : around_[v]) {
-      const Quad& x = pq_.quads[q];
-      const std::size_t k = static_cast<std::size_t>(std::find(x.begin(), x.end(), v) - x.begin());
-      a += interior_angle({pq_.pos[x[0]], pq_.pos[x[1]], pq_.pos[x[2]], pq_.pos[x[3]]}, k);
-    }
+    const double a = outline_angle_[v];
     const auto best_sine = [a](std::size_t k) {
       const double c = a / static_cast<double>(k);
       return c < kPi ? std::sin(c) : -1.0;
@@ -984,7 +980,7 @@ class PatchRefill {
     // The turns are part of the problem: a pinned node's count (fill_count) reads the outline's
     // angle in the patch's frame, which the posed positions of the key hold only to rounding.
     std::string kind = "regrid";
-    kind.append(reinterpret_cast<const char*>(turn.data()), turn.size() * sizeof(int));
+    append_bytes(kind, turn);
     return judged_grid(kind, std::move(*fill), cavity, cycle, old, false, log, header, recounted);
   }
 
@@ -1016,8 +1012,8 @@ class PatchRefill {
         std::optional<TurnFill> fill = ogrid_fill(turn, static_cast<std::uint32_t>(layers + more),
                                                   static_cast<std::uint32_t>(start));
         if (!fill || !count_ok(*fill, cavity.size(), kRegridCountRatio)) continue;
-        const std::string kind = "ogrid " + std::to_string(layers + more) + " " +
-                                 std::to_string(start) + (recounted ? " recounted " : " ");
+        const std::string kind =
+            "ogrid " + std::to_string(layers + more) + " " + std::to_string(start) + " ";
         std::optional<Plan> plan =
             judged_grid(kind, std::move(*fill), cavity, cycle, old, false, log, header, recounted);
         keep_most_gain(best, std::move(plan));
@@ -1049,7 +1045,8 @@ class PatchRefill {
     const std::vector<std::uint32_t> ring = ring_of(cavity, cycle);
     // The answer depends on how low the regrid may go (regrid_low_), which is the patch's.
     std::string key = kind + problem_key(old.cycle, cycle, old.inner, old.quads, ring, old.cf);
-    if (!every_measure) key.append(reinterpret_cast<const char*>(&regrid_low_), sizeof regrid_low_);
+    if (!every_measure) append_bytes(key, regrid_low_);
+    append_bytes(key, no_more_skewed);
     const std::shared_ptr<const CavityMemo::Answer> answer = memo_.answer(std::move(key), [&] {
       return regrid_answer(std::move(fill), old, cycle, ring, every_measure, no_more_skewed);
     });
@@ -1156,6 +1153,9 @@ class PatchRefill {
   std::size_t regrid() {
     regrid_low_ =
         std::max(kRegridLowFloor, settled(outline_bound(pq_.pos, pq_.fixed, pq_.quads, &alive_)));
+    // Pinned nodes do not move and their quads cover the outline's angle whatever the regrids
+    // change: read once (fill_count).
+    outline_angle_ = pinned_angles(pq_.pos, pq_.fixed, pq_.quads, &alive_);
     std::vector<std::uint32_t> candidates;
     for (std::uint32_t v = 0; v < pq_.pos.size(); ++v)
       if (regrid_candidate(v)) candidates.push_back(v);
@@ -1208,6 +1208,8 @@ class PatchRefill {
   double below_;  ///< quads worse than this get a re-fill tried
   /// How low a regrid may take its cavity's worst corner (regrid(): kRegridLowFloor)
   double regrid_low_ = std::numeric_limits<double>::infinity();
+  /// The outline's angle at each pinned node (regrid(): pinned_angles), for fill_count.
+  std::vector<double> outline_angle_;
   bool parallel_;
   CavityMemo& memo_;
   std::vector<bool> alive_;

@@ -2504,29 +2504,26 @@ constexpr std::size_t kFaceMemoBytes = std::size_t{64} << 20;
 /// The bytes of everything the templates read of a face.
 std::string face_key(const FaceInput& face) {
   std::string key;
-  const auto put = [&key](const auto& value) {
-    key.append(reinterpret_cast<const char*>(&value), sizeof value);
-  };
-  put(face.cycle.size());
-  key.append(reinterpret_cast<const char*>(face.cycle.data()), face.cycle.size() * sizeof(Vec2));
-  put(face.sides.size());
+  append_bytes(key, face.cycle.size());
+  append_bytes(key, face.cycle);
+  append_bytes(key, face.sides.size());
   for (const FaceSide& side : face.sides) {
-    put(side.kind);
-    put(side.first);
-    put(side.edges);
-    put(side.joints.size());
-    for (std::uint32_t j : side.joints) put(j);
+    append_bytes(key, side.kind);
+    append_bytes(key, side.first);
+    append_bytes(key, side.edges);
+    append_bytes(key, side.joints.size());
+    append_bytes(key, side.joints);
   }
-  put(face.free_nodes.size());
+  append_bytes(key, face.free_nodes.size());
   for (bool f : face.free_nodes) key.push_back(f ? '1' : '0');
   return key;
 }
 
-}  // namespace
-
 /// set_face_fill_memo's switch and face_fill_memo_hits' count.
 std::atomic<bool> g_face_memo_on{true};
 std::atomic<std::size_t> g_face_memo_hits{0};
+
+}  // namespace
 
 struct FaceFillMemo::Held {
   LockedMemo<std::optional<FaceMesh>> answers{kFaceMemoBytes};
@@ -2553,18 +2550,6 @@ std::optional<FaceMesh> FaceFillMemo::fill(const FaceInput& face) {
   }
   return computed;
 }
-
-}  // namespace laytracks::mesher_detail
-
-namespace laytracks {
-
-void set_face_fill_memo(bool on) { mesher_detail::g_face_memo_on = on; }
-
-std::size_t face_fill_memo_hits() { return mesher_detail::g_face_memo_hits; }
-
-}  // namespace laytracks
-
-namespace laytracks::mesher_detail {
 
 FaceMesh fill_face(const FaceInput& face,
                    const std::string& where,
@@ -2778,3 +2763,11 @@ std::optional<FaceMesh> fill_cavity(const FaceInput& face) {
 }
 
 }  // namespace laytracks::mesher_detail
+
+namespace laytracks {
+
+void set_face_fill_memo(bool on) { mesher_detail::g_face_memo_on = on; }
+
+std::size_t face_fill_memo_hits() { return mesher_detail::g_face_memo_hits; }
+
+}  // namespace laytracks

@@ -417,6 +417,15 @@ void untaper_nodes(std::vector<Vec2>& pos,
                    int iterations,
                    const SweepSchedule* schedule = nullptr);
 
+/// The angle at each fixed node (the outline's, when the fixed nodes are a patch's boundary):
+/// the sum of its quads' corners there, 0 at the other nodes; with `counts`, how many quads
+/// meet each. Only the quads with `alive` set, when given.
+std::vector<double> pinned_angles(const std::vector<Vec2>& pos,
+                                  const std::vector<bool>& fixed,
+                                  const std::vector<std::array<std::uint32_t, 4>>& quads,
+                                  const std::vector<bool>* alive = nullptr,
+                                  std::vector<std::uint32_t>* counts = nullptr);
+
 /// The best worst corner quads over these nodes can have at their fixed nodes, whatever the
 /// others do: at a fixed node whose k quads' corners add up to the angle a there (the
 /// outline's, when the fixed nodes are a patch's boundary), sin(a / k) at best; 1 when none is

@@ -8,10 +8,26 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <type_traits>
 #include <unordered_map>
 #include <utility>
+#include <vector>
 
 namespace laytracks::mesher_detail {
+
+/// Appends the bytes of a trivially copyable value to a memo key.
+template <class T>
+void append_bytes(std::string& key, const T& value) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  key.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+/// Appends the bytes of a vector's elements (not its size) to a memo key.
+template <class T>
+void append_bytes(std::string& key, const std::vector<T>& values) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  key.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+}
 
 template <class Answer>
 class LockedMemo {

@@ -742,21 +742,31 @@ void optimize_nodes(std::vector<Vec2>& pos,
   sweep_nodes(pos, fixed, around, quads, iterations, schedule, visit);
 }
 
-double outline_bound(const std::vector<Vec2>& pos,
-                     const std::vector<bool>& fixed,
-                     const std::vector<std::array<std::uint32_t, 4>>& quads,
-                     const std::vector<bool>* alive) {
+std::vector<double> pinned_angles(const std::vector<Vec2>& pos,
+                                  const std::vector<bool>& fixed,
+                                  const std::vector<std::array<std::uint32_t, 4>>& quads,
+                                  const std::vector<bool>* alive,
+                                  std::vector<std::uint32_t>* counts) {
   std::vector<double> angle(pos.size(), 0.0);
-  std::vector<std::uint32_t> count(pos.size(), 0);
+  if (counts) counts->assign(pos.size(), 0);
   for (std::size_t q = 0; q < quads.size(); ++q) {
     if (alive && !(*alive)[q]) continue;
     const auto& x = quads[q];
     for (std::size_t k = 0; k < 4; ++k) {
       if (!fixed[x[k]]) continue;
       angle[x[k]] += interior_angle({pos[x[0]], pos[x[1]], pos[x[2]], pos[x[3]]}, k);
-      ++count[x[k]];
+      if (counts) ++(*counts)[x[k]];
     }
   }
+  return angle;
+}
+
+double outline_bound(const std::vector<Vec2>& pos,
+                     const std::vector<bool>& fixed,
+                     const std::vector<std::array<std::uint32_t, 4>>& quads,
+                     const std::vector<bool>* alive) {
+  std::vector<std::uint32_t> count;
+  const std::vector<double> angle = pinned_angles(pos, fixed, quads, alive, &count);
   double bound = 1.0;
   for (std::size_t v = 0; v < pos.size(); ++v)
     if (count[v] > 0) bound = std::min(bound, std::sin(angle[v] / count[v]));
