@@ -67,6 +67,10 @@ constexpr std::size_t kPoleValence = 6;
 /// and tried the poles among them). Off round values: a regular 12-gon's corners are 150
 /// degrees exactly, and a threshold there would read them one way or the other by the pose.
 constexpr double kLoneFlatAngle = 152.5 * kPi / 180.0;
+/// Corners of a quad within this much of its least scaled Jacobian are all its worst
+/// (worst_corners): far above the rounding between poses (1e-11 on the fuzz parts), far below
+/// the differences the templates' shapes make.
+constexpr double kWorstCornerTie = 1e-7;
 /// Regrid (regrid_plan): round an irregular node, its quads and then the quads at their nodes,
 /// out to kRegridRings rings of at most kRegridQuads quads, are its cavities (6 rings and 250
 /// quads: taper <= 0.8 a tenth lower on the sets for 10% more time, and more worst corners
@@ -570,39 +574,49 @@ class PatchRefill {
     return plan_cavity(quads_at_nodes_of(star), log, kMaxPoleCavityNodes);
   }
 
-  /// The corner of q with the least scaled Jacobian (settled: of two equal but for rounding,
-  /// the first in every pose).
-  std::size_t worst_corner(std::uint32_t q) const {
+  /// The corners of q whose scaled Jacobian is within kWorstCornerTie of its least, as bits
+  /// (1 << k). Of two corners equal but for rounding (a kite's, an isosceles trapezoid's) both,
+  /// in every pose: settled values alone chose the first of the pair, unless a grain's rounding
+  /// boundary fell between them (fuzz seed 52052's bent_031: a kite's corners at a pole of 20
+  /// quads and at a node of 3, 6e-12 apart; the pole's star was tried in one pose only).
+  unsigned worst_corners(std::uint32_t q) const {
     const Quad& x = pq_.quads[q];
-    std::size_t at = 0;
+    double c[4];
     double worst = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < 4; ++k) {
-      const double c = settled(
-          corner_jacobian(pq_.pos[x[k]], pq_.pos[x[(k + 1) % 4]], pq_.pos[x[(k + 3) % 4]]));
-      if (c < worst) {
-        worst = c;
-        at = k;
-      }
+      c[k] = corner_jacobian(pq_.pos[x[k]], pq_.pos[x[(k + 1) % 4]], pq_.pos[x[(k + 3) % 4]]);
+      worst = std::min(worst, c[k]);
     }
-    return at;
+    unsigned bits = 0;
+    for (std::size_t k = 0; k < 4; ++k)
+      if (c[k] <= worst + kWorstCornerTie) bits |= 1u << k;
+    return bits;
   }
 
   /// The node of q's worst corner when it is a pole (a free node of kPoleValence quads or
-  /// more), else kNew.
+  /// more), else kNew: the first such node among its worst corners (worst_corners).
   std::uint32_t pole_of(std::uint32_t q) const {
-    const std::uint32_t pole = pq_.quads[q][worst_corner(q)];
-    return pq_.fixed[pole] || around_[pole].size() < kPoleValence ? kNew : pole;
+    const unsigned worst = worst_corners(q);
+    for (std::size_t k = 0; k < 4; ++k) {
+      const std::uint32_t v = pq_.quads[q][k];
+      if ((worst >> k & 1u) && !pq_.fixed[v] && around_[v].size() >= kPoleValence) return v;
+    }
+    return kNew;
   }
 
-  /// Whether q's worst corner is a pinned node that q alone meets, at more than
-  /// kLoneFlatAngle: a boundary vertex on a nearly straight outline that no other quad shares.
+  /// Whether one of q's worst corners (worst_corners) is a pinned node that q alone meets, at
+  /// more than kLoneFlatAngle: a boundary vertex on a nearly straight outline that no other
+  /// quad shares.
   bool lone_flat(std::uint32_t q) const {
     const Quad& x = pq_.quads[q];
-    const std::size_t k = worst_corner(q);
-    if (!pq_.fixed[x[k]] || around_[x[k]].size() != 1) return false;
-    const double a =
-        interior_angle({pq_.pos[x[0]], pq_.pos[x[1]], pq_.pos[x[2]], pq_.pos[x[3]]}, k);
-    return a > kLoneFlatAngle && a <= kPi;  // a reflex corner (an inverted quad) is not flat
+    const unsigned worst = worst_corners(q);
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (!(worst >> k & 1u) || !pq_.fixed[x[k]] || around_[x[k]].size() != 1) continue;
+      const double a =
+          interior_angle({pq_.pos[x[0]], pq_.pos[x[1]], pq_.pos[x[2]], pq_.pos[x[3]]}, k);
+      if (a > kLoneFlatAngle && a <= kPi) return true;  // a reflex corner (inverted) is not flat
+    }
+    return false;
   }
 
   /// What an attempt round q reads: the nodes of the quads at the nodes of the quads at the

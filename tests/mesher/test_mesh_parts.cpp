@@ -317,6 +317,30 @@ TEST_CASE("a pole is the same node in every pose", "[mesh][pose][cavity]") {
   }
 }
 
+TEST_CASE("a kite's two worst corners pick the same pole in every pose", "[mesh][pose][cavity]") {
+  // Fuzz seed 52052's bent_031 (kite_pole_tie.json) and the same part turned and moved as
+  // run-fuzz.py poses it (kite_pole_tie_turned.json): a noisy blob folded twice. A kite's two
+  // equal corners, one at a pole of 20 quads and one at a node of 3, were 6e-12 apart and a
+  // rounding boundary of kJacobianGrain lay between them when turned: settled, the corners
+  // named another worst corner, the pole pass left the pole's star alone there, and the
+  // meshes had 1,504 and 1,507 quads. Corners within kWorstCornerTie of a quad's worst are all
+  // its worst now (worst_corners).
+  const RawPart given = read_brep_json(test_data_dir() + "/parts/kite_pole_tie.json");
+  const MeshPartResult base = mesh_part(build_part(given), MeshPartOptions{});
+  REQUIRE(base.check.valid());
+  CHECK(base.stats.cavity_refills > 0);
+  const MeshPartResult turned = mesh_part(
+      build_part(read_brep_json(test_data_dir() + "/parts/kite_pole_tie_turned.json")),
+      MeshPartOptions{});
+  CHECK(turned.check.valid());
+  CHECK(turned.mesh.elements.size() == base.mesh.elements.size());
+  CHECK(turned.stats.cavity_refills == base.stats.cavity_refills);
+  const MeshPartResult mirrored =
+      mesh_part(build_part(transformed(given, compose(mirror_x(), scaling(1e-3)))), MeshPartOptions{});
+  CHECK(mirrored.check.valid());
+  CHECK(mirrored.mesh.elements.size() == base.mesh.elements.size());
+}
+
 TEST_CASE("an arc's rails converging on the axis meet at one node", "[mesh][fans]") {
   // An obround strap 60 x 20 with an obround slot 26 x 6: the rails of the strap's end arcs
   // converge on the axis near the arcs' centres, at MA nodes 0.25-0.35 h apart, each wedge
