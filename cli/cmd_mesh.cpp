@@ -151,6 +151,7 @@ int run_mesh(const std::vector<std::string>& argv) {
     doc["regrids"] = r.stats.regrids;
     doc["loop_bridges"] = r.stats.loop_bridges;
     doc["disk_patches"] = r.stats.disk_patches;
+    doc["hub_patches"] = r.stats.hub_patches;
     doc["spiral_closures"] = r.spiral_closures;
     doc["loop_closures"] = r.loop_closures;
     doc["rail_merges"] = r.rail_merges;

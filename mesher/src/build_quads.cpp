@@ -78,6 +78,12 @@ constexpr double kTinyEndPiece = 0.1;
 /// than kDiskGap (a regular hexagon's six rails stay: its wedges are good quads).
 constexpr std::size_t kDiskRails = 8;
 constexpr double kDiskGap = 60.0 * kPi / 180.0;
+/// hub_nodes: at least this many rails, no two neighbours round the node further apart than
+/// kHubGap (a five-pointed star's centre: five rails 72 degrees apart). Whether a hub's rails
+/// go is decided by the meshes with and without them (mesh_part), so the bounds only say
+/// where a second mesh is worth making.
+constexpr std::size_t kHubRails = 5;
+constexpr double kHubGap = 75.0 * kPi / 180.0;
 /// drop_disk_rails on a nearly round loop: the rails' MA ends all within this x the shortest
 /// rail of their centroid, and the loop round (mesher_detail::is_round, the O-grid's test).
 constexpr double kDiskSpread = 0.1;
@@ -225,7 +231,8 @@ class QuadBuilder {
         sliver_caps_(options.drop_sliver_caps),
         needle_tips_(options.needle_tips),
         face_memo_(options.face_memo),
-        split_pieces_(options.split_pieces) {
+        split_pieces_(options.split_pieces),
+        drop_hubs_(options.drop_hubs) {
     if (!(h_ > 0.0) && !law_) throw InternalError("mesher: the element size must be positive");
   }
 
@@ -289,6 +296,8 @@ class QuadBuilder {
         trace_faces(PatchId(p), patches_[p]);
       }
     }
+    for (std::size_t p = 0; p < np; ++p)
+      if (!hub_nodes(patches_[p]).empty()) result_.hubs.push_back(static_cast<std::uint32_t>(p));
     fix_parity();
     for (std::size_t p = 0; p < np; ++p) unfold_darts(patches_[p]);
     // Split boundary pieces (mesh_part, after an UnfilledFace): two more edges each, which
@@ -651,6 +660,48 @@ class QuadBuilder {
     drop_twin_rails(g);
     drop_dangling_rails(g);
     drop_disk_rails(pid, g);
+    if (std::find(drop_hubs_.begin(), drop_hubs_.end(), pid.value) != drop_hubs_.end())
+      drop_hub_rails(g);
+  }
+
+  /// Hubs (docs/mesher.md, "Hubs"): MA nodes where kHubRails or more rails of a patch end,
+  /// no two neighbours round it further apart than kHubGap (uniform mode). A gear's centre:
+  /// the rails from its tooth gaps all end there, and the wedges between them, whose far
+  /// ends are the teeth's own tracks, get a handful of quads across.
+  std::vector<std::uint32_t> hub_nodes(const PatchGraph& g) const {
+    std::vector<std::uint32_t> hubs;
+    if (law_) return hubs;
+    std::map<std::uint32_t, std::vector<std::size_t>> at;
+    for (std::size_t i = 0; i < g.edges.size(); ++i)
+      if (g.edges[i].rail && g.nodes[g.edges[i].b].ma) at[g.edges[i].b].push_back(i);
+    for (const auto& [m, rails] : at) {
+      if (rails.size() < kHubRails) continue;
+      const Vec2 centre = g.nodes[m].p;
+      std::vector<double> angles;
+      for (std::size_t i : rails) {
+        const Vec2 d = g.nodes[g.edges[i].a].p - centre;
+        angles.push_back(std::atan2(d.y, d.x));
+      }
+      std::sort(angles.begin(), angles.end());
+      double widest = angles.front() + 2.0 * kPi - angles.back();
+      for (std::size_t k = 1; k < angles.size(); ++k)
+        widest = std::max(widest, angles[k] - angles[k - 1]);
+      if (widest <= kHubGap) hubs.push_back(m);
+    }
+    return hubs;
+  }
+
+  /// The rails that end at a hub of the patch go (QuadOptions::drop_hubs): the hub and the
+  /// wedges round it are one face, which the templates fill (a large one by the lattice).
+  void drop_hub_rails(PatchGraph& g) {
+    const std::vector<std::uint32_t> hubs = hub_nodes(g);
+    if (hubs.empty()) return;
+    std::vector<bool> drop(g.edges.size(), false);
+    for (std::size_t i = 0; i < g.edges.size(); ++i)
+      drop[i] = g.edges[i].rail &&
+                std::find(hubs.begin(), hubs.end(), g.edges[i].b) != hubs.end();
+    erase_marked(g.edges, drop);
+    ++result_.stats.hub_patches;
   }
 
   /// Twin rails: two rails that cross the patch between the same two boundary nodes (their
@@ -2228,6 +2279,7 @@ class QuadBuilder {
   bool needle_tips_ = false;  ///< QuadOptions::needle_tips
   mesher_detail::FaceFillMemo* face_memo_ = nullptr;  ///< QuadOptions::face_memo
   std::vector<PieceRef> split_pieces_;  ///< QuadOptions::split_pieces
+  std::vector<std::uint32_t> drop_hubs_;  ///< QuadOptions::drop_hubs
   /// Per arc, its discretisation edges: parameters of the edge's a and b along the arc.
   std::vector<std::vector<std::tuple<double, double, EdgeId>>> arc_edges_;
 };

@@ -75,6 +75,15 @@ constexpr int kPieceSplits = 4;
 /// that one split did not mend was not mended by three more either (fuzz seed 62062's
 /// extreme_016, 10 to 16 nodes, at four sizes: 11.8 -> 17.8 s before the size that meshes).
 constexpr std::size_t kPieceSplitFaceNodes = 16;
+/// Hubs (mesh_part_with_hubs): a part is meshed again without its hubs' rails only when more
+/// than this % of its quads are beyond Table III's thresholds (skew, aspect and taper added
+/// up: the paper's taper figure, 10.4%): the second run costs as much as the first.
+constexpr double kHubTry = 10.4;
+/// The mesh without a hub's rails is kept when its quads beyond Table III's thresholds are
+/// fewer by this many points of % ...
+constexpr double kHubGain = 0.5;
+/// ... and its worst corner no lower than min(the first's, kRefillBelowUniform) - this.
+constexpr double kHubWorstDrop = 0.05;
 
 /// The smallest corner scaled Jacobian of the mesh's quads, each in its patch's frame.
 double worst_scaled_jacobian(const Part& part, const QuadMesh& mesh) {
@@ -132,7 +141,8 @@ namespace {
 
 MeshPartResult mesh_part_unchecked_input(const Part& part,
                                          const MeshPartOptions& options,
-                                         const StageFn& on_stage) {
+                                         const StageFn& on_stage,
+                                         const std::vector<std::uint32_t>& drop_hubs = {}) {
   auto stage = [&](const char* name) {
     if (on_stage) on_stage(name);
   };
@@ -179,6 +189,7 @@ MeshPartResult mesh_part_unchecked_input(const Part& part,
   QuadOptions qo;
   qo.size = r.size;
   qo.adaptive = law.get();
+  qo.drop_hubs = drop_hubs;
   // A face that no template fills is most often a needle of a sawtooth outline cut off by
   // rails: a second attempt drops those rails (docs/mesher.md, "Sliver caps"). Only then, so
   // that every part meshed at the first attempt keeps its mesh. A third attempt also drops
@@ -225,6 +236,7 @@ MeshPartResult mesh_part_unchecked_input(const Part& part,
   quads.stats.split_pieces = static_cast<std::size_t>(splits);
   r.mesh = std::move(quads.mesh);
   r.stats = quads.stats;
+  r.hubs = std::move(quads.hubs);
   r.stats.edge_flips = flip_edges(part, r.mesh);
   r.stats.thin_rows = merge_thin_rows(part, r.mesh);
   r.stats.corner_kites = fold_corner_kites(part, r.mesh);
@@ -324,13 +336,43 @@ MeshPartResult mesh_part_unchecked_input(const Part& part,
   return r;
 }
 
+/// The share of a mesh's quads beyond Table III's thresholds (skew, aspect, taper), in %.
+double beyond_table3(const QualitySummary& q) {
+  return q.measures[0].bad_percent + q.measures[1].bad_percent + q.measures[2].bad_percent;
+}
+
+/// Hubs (docs/mesher.md, "Hubs"): a part whose rails meet at a hub in some patch, and whose
+/// mesh has more than kHubTry % of its quads beyond Table III's thresholds, is meshed again
+/// with those rails gone, and that mesh is kept when its quads beyond Table III's
+/// thresholds are fewer by kHubGain points of % and its worst corner is no lower than
+/// min(the first's, kRefillBelowUniform) - kHubWorstDrop. Where it gives no mesh, the first
+/// stands.
+MeshPartResult mesh_part_with_hubs(const Part& part,
+                                   const MeshPartOptions& options,
+                                   const StageFn& on_stage) {
+  MeshPartResult first = mesh_part_unchecked_input(part, options, on_stage);
+  if (first.hubs.empty() || !(beyond_table3(first.quality) > kHubTry)) return first;
+  try {
+    MeshPartResult second = mesh_part_unchecked_input(part, options, on_stage, first.hubs);
+    const double worst_first = first.quality.measures[6].worst;
+    if (beyond_table3(second.quality) < beyond_table3(first.quality) - kHubGain &&
+        second.quality.measures[6].worst >=
+            std::min(worst_first, kRefillBelowUniform) - kHubWorstDrop) {
+      second.hubs.clear();
+      return second;
+    }
+  } catch (const InternalError&) {
+  }
+  return first;
+}
+
 }  // namespace
 
 MeshPartResult mesh_part(const Part& part,
                          const MeshPartOptions& options,
                          const StageFn& on_stage) {
   try {
-    return mesh_part_unchecked_input(part, options, on_stage);
+    return mesh_part_with_hubs(part, options, on_stage);
   } catch (const InternalError& e) {
     // A uniform size capped at kMaxSizeFraction x the part's extent asks for the coarsest mesh
     // there is; where that fails (a stadium whose faces at that size are bays round a slot's

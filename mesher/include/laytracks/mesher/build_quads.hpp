@@ -45,6 +45,9 @@ struct QuadOptions {
   /// the parity is made even (two more keep it): mesh_part's answer to an UnfilledFace in the
   /// third attempt (docs/mesher.md, "Split boundary pieces").
   std::vector<PieceRef> split_pieces;
+  /// Patches whose hub rails go (mesh_part's second build of a part with QuadResult::hubs;
+  /// docs/mesher.md, "Hubs"): the rails that meet at a hub, as a disk's do (drop_disk_rails).
+  std::vector<std::uint32_t> drop_hubs;
   /// The faces' fills of earlier attempts (mesh_part keeps one across its attempts); may be
   /// null. Must outlive the call.
   mesher_detail::FaceFillMemo* face_memo = nullptr;
@@ -120,11 +123,14 @@ struct QuadStats {
   std::size_t regrids = 0;          ///< cavities round irregular nodes gridded again (same)
   std::size_t loop_bridges = 0;     ///< loops no rail reached, joined by two bridge rails
   std::size_t disk_patches = 0;     ///< patches whose rails all met at one point: one face
+  std::size_t hub_patches = 0;      ///< patches whose hub's rails went (QuadOptions::drop_hubs)
 };
 
 struct QuadResult {
   QuadMesh mesh;
   QuadStats stats;
+  /// Patches (ids) with a hub whose rails stayed (docs/mesher.md, "Hubs"); uniform mode only.
+  std::vector<std::uint32_t> hubs;
 };
 
 /// Builds the all-quad mesh of the part from its cut graph (whose MA-CUT-VERTs carry the axis

@@ -104,6 +104,9 @@ struct MeshPartResult {
   bool adaptive = false;
   double dtheta_deg = 0.0;  ///< adaptive: Delta theta_in
   QuadStats stats;
+  /// Patches with a hub whose rails stayed (QuadResult::hubs); mesh_part builds such a part
+  /// again without them and keeps the better mesh (docs/mesher.md, "Hubs").
+  std::vector<std::uint32_t> hubs;
   std::size_t rail_chains = 0;
   std::size_t spiral_closures = 0;  ///< rails ended on a point of their edge (CutGraph)
   std::size_t loop_closures = 0;    ///< rails landed on their own chain's earlier crossing
