@@ -352,6 +352,15 @@ MeshPartResult mesh_part_with_hubs(const Part& part,
                                    const StageFn& on_stage) {
   MeshPartResult first = mesh_part_unchecked_input(part, options, on_stage);
   if (first.hubs.empty() || !(beyond_table3(first.quality) > kHubTry)) return first;
+  // Each stage's time is both runs' (the report's seconds add up to what the user waited).
+  const auto add_times = [](StageTimes& to, const StageTimes& from) {
+    to.medial += from.medial;
+    to.rails += from.rails;
+    to.quads += from.quads;
+    to.refill += from.refill;
+    to.smooth += from.smooth;
+    to.check += from.check;
+  };
   try {
     MeshPartResult second = mesh_part_unchecked_input(part, options, on_stage, first.hubs);
     const double worst_first = first.quality.measures[6].worst;
@@ -359,8 +368,10 @@ MeshPartResult mesh_part_with_hubs(const Part& part,
         second.quality.measures[6].worst >=
             std::min(worst_first, kRefillBelowUniform) - kHubWorstDrop) {
       second.hubs.clear();
+      add_times(second.times, first.times);
       return second;
     }
+    add_times(first.times, second.times);
   } catch (const InternalError&) {
   }
   return first;
