@@ -676,17 +676,7 @@ class QuadBuilder {
       if (g.edges[i].rail && g.nodes[g.edges[i].b].ma) at[g.edges[i].b].push_back(i);
     for (const auto& [m, rails] : at) {
       if (rails.size() < kHubRails) continue;
-      const Vec2 centre = g.nodes[m].p;
-      std::vector<double> angles;
-      for (std::size_t i : rails) {
-        const Vec2 d = g.nodes[g.edges[i].a].p - centre;
-        angles.push_back(std::atan2(d.y, d.x));
-      }
-      std::sort(angles.begin(), angles.end());
-      double widest = angles.front() + 2.0 * kPi - angles.back();
-      for (std::size_t k = 1; k < angles.size(); ++k)
-        widest = std::max(widest, angles[k] - angles[k - 1]);
-      if (widest <= kHubGap) hubs.push_back(m);
+      if (widest_gap(g, rails, g.nodes[m].p) <= kHubGap) hubs.push_back(m);
     }
     return hubs;
   }
@@ -882,19 +872,28 @@ class QuadBuilder {
       for (std::uint32_t m : ends) spread = std::max(spread, distance(g.nodes[m].p, centre));
       if (spread > kDiskSpread * shortest || !round_loop(g)) return;
     }
+    std::vector<std::size_t> rails;
+    for (std::size_t i = 0; i < g.edges.size(); ++i)
+      if (g.edges[i].rail) rails.push_back(i);
+    if (widest_gap(g, rails, centre) > kDiskGap) return;
+    g.edges.erase(std::remove_if(g.edges.begin(), g.edges.end(), [](const CEdge& e) { return e.rail; }),
+                  g.edges.end());
+    ++result_.stats.disk_patches;
+  }
+
+  /// The widest angle round `centre` between the feet of two neighbouring rails of `rails`
+  /// (indices of g.edges; at least one).
+  static double widest_gap(const PatchGraph& g, const std::vector<std::size_t>& rails, Vec2 centre) {
     std::vector<double> angles;
-    for (const CEdge& e : g.edges) {
-      if (!e.rail) continue;
-      const Vec2 d = g.nodes[e.a].p - centre;
+    for (std::size_t i : rails) {
+      const Vec2 d = g.nodes[g.edges[i].a].p - centre;
       angles.push_back(std::atan2(d.y, d.x));
     }
     std::sort(angles.begin(), angles.end());
     double widest = angles.front() + 2.0 * kPi - angles.back();
-    for (std::size_t k = 1; k < angles.size(); ++k) widest = std::max(widest, angles[k] - angles[k - 1]);
-    if (widest > kDiskGap) return;
-    g.edges.erase(std::remove_if(g.edges.begin(), g.edges.end(), [](const CEdge& e) { return e.rail; }),
-                  g.edges.end());
-    ++result_.stats.disk_patches;
+    for (std::size_t k = 1; k < angles.size(); ++k)
+      widest = std::max(widest, angles[k] - angles[k - 1]);
+    return widest;
   }
 
   /// Whether the patch's one loop, as its boundary nodes, is round.
