@@ -366,6 +366,31 @@ TEST_CASE("mesh writes the same bytes on one thread as on several", "[cli][deter
   }
 }
 
+TEST_CASE("mesh reports a hub meshed again, the same bytes every run, with both runs' times",
+          "[cli][hub]") {
+  // star_5 meshed uniformly: its centre's five rails go in a second run (docs/mesher.md,
+  // "Hubs"), which the report counts; the stage times are both runs' added, so they sum to
+  // about the total.
+  const fs::path d = fresh_dir("hub");
+  const std::string part = q(laytracks::test::cases_dir() + "/star_5.json");
+  std::vector<std::string> outputs;
+  for (int k = 0; k < 2; ++k) {
+    const Run r = run("mesh " + part + " --uniform -o " + q(d / "s.msh") + " --quiet --report " +
+                      q(d / "r.json"));
+    REQUIRE(r.status == 0);
+    outputs.push_back(slurp(d / "s.msh"));
+    const nlohmann::json report = nlohmann::json::parse(slurp(d / "r.json"));
+    CHECK(report["hub_patches"].get<int>() == 1);
+    CHECK(report["quality"]["measures"]["taper"]["bad_percent"].get<double>() < 10.4);
+    double stages = 0.0;
+    for (const char* s : {"medial", "rails", "quads", "refill", "smooth", "check"})
+      stages += report["seconds"][s].get<double>();
+    CHECK(stages <= report["seconds"]["total"].get<double>() * 1.0001);
+    CHECK(stages >= 0.5 * report["seconds"]["total"].get<double>());
+  }
+  CHECK(outputs[0] == outputs[1]);
+}
+
 TEST_CASE("mesh refuses what it cannot mesh, writes nothing, and says where", "[cli][mesh]") {
   const fs::path d = fresh_dir("mesh-refused");
   std::ofstream(d / "old.msh") << "previous content";
