@@ -139,21 +139,31 @@ CutGraphOptions cut_graph_options(const Part& part,
 
 namespace {
 
-MeshPartResult mesh_part_unchecked_input(const Part& part,
-                                         const MeshPartOptions& options,
-                                         const StageFn& on_stage,
-                                         const std::vector<std::uint32_t>& drop_hubs = {}) {
+/// A part's medial axes and rails (mesh_part's first two stages) and the figures they give
+/// (`head`: the mode, the size, the rails' counts and the two stages' times). Filled in place
+/// and never moved: the width law and the cut graph read the axes where they are.
+struct LaidRails {
+  std::vector<MedialAxis> axes;
+  std::unique_ptr<TrackWidthLaw> law;
+  CutGraph graph;
+  MeshPartResult head;
+};
+
+void lay_rails(const Part& part,
+               const MeshPartOptions& options,
+               const StageFn& on_stage,
+               LaidRails& laid) {
   auto stage = [&](const char* name) {
     if (on_stage) on_stage(name);
   };
-  MeshPartResult r;
+  MeshPartResult& r = laid.head;
   Clock clock;
   stage("medial");
-  std::vector<MedialAxis> axes = compute_medial_axes(part);
+  laid.axes = compute_medial_axes(part);
   r.times.medial = clock.lap();
   stage("rails");
-  std::unique_ptr<TrackWidthLaw> law;
-  const CutGraphOptions cg = cut_graph_options(part, axes, options, law, &r.size_capped_from);
+  std::unique_ptr<TrackWidthLaw>& law = laid.law;
+  const CutGraphOptions cg = cut_graph_options(part, laid.axes, options, law, &r.size_capped_from);
   // The mode and the size as cut_graph_options chose them.
   r.adaptive = law != nullptr;
   r.size = law ? law->end_width() : cg.track_width;
@@ -172,7 +182,8 @@ MeshPartResult mesh_part_unchecked_input(const Part& part,
       throw InputError(s.str());
     }
   }
-  const CutGraph graph = build_cut_graph(part, axes, cg);
+  laid.graph = build_cut_graph(part, laid.axes, cg);
+  const CutGraph& graph = laid.graph;
   if (!graph.problems.empty()) {
     throw InternalError("rails: " + graph.problems.front() + " (" +
                         std::to_string(graph.problems.size()) + " problems)");
@@ -185,6 +196,22 @@ MeshPartResult mesh_part_unchecked_input(const Part& part,
   r.crowded_seeds = graph.crowded_seeds;
   r.tracks = graph.track_count;
   r.times.rails = clock.lap();
+}
+
+/// The quads on laid rails, re-filled, smoothed and checked (mesh_part's stages from "quads"
+/// on); the patches in `drop_hubs` without their hubs' rails (docs/mesher.md, "Hubs").
+MeshPartResult mesh_on_rails(const Part& part,
+                             const MeshPartOptions& options,
+                             const StageFn& on_stage,
+                             const LaidRails& laid,
+                             const std::vector<std::uint32_t>& drop_hubs = {}) {
+  auto stage = [&](const char* name) {
+    if (on_stage) on_stage(name);
+  };
+  MeshPartResult r = laid.head;
+  const CutGraph& graph = laid.graph;
+  const std::unique_ptr<TrackWidthLaw>& law = laid.law;
+  Clock clock;
   stage("quads");
   QuadOptions qo;
   qo.size = r.size;
@@ -350,19 +377,20 @@ double beyond_table3(const QualitySummary& q) {
 MeshPartResult mesh_part_with_hubs(const Part& part,
                                    const MeshPartOptions& options,
                                    const StageFn& on_stage) {
-  MeshPartResult first = mesh_part_unchecked_input(part, options, on_stage);
+  LaidRails laid;
+  lay_rails(part, options, on_stage, laid);
+  MeshPartResult first = mesh_on_rails(part, options, on_stage, laid);
   if (first.hubs.empty() || !(beyond_table3(first.quality) > kHubTry)) return first;
-  // Each stage's time is both runs' (the report's seconds add up to what the user waited).
+  // The second run starts from the same rails; the stages after them are timed for both runs
+  // (the report's seconds add up to what the user waited).
   const auto add_times = [](StageTimes& to, const StageTimes& from) {
-    to.medial += from.medial;
-    to.rails += from.rails;
     to.quads += from.quads;
     to.refill += from.refill;
     to.smooth += from.smooth;
     to.check += from.check;
   };
   try {
-    MeshPartResult second = mesh_part_unchecked_input(part, options, on_stage, first.hubs);
+    MeshPartResult second = mesh_on_rails(part, options, on_stage, laid, first.hubs);
     const double worst_first = first.quality.measures[6].worst;
     if (beyond_table3(second.quality) < beyond_table3(first.quality) - kHubGain &&
         second.quality.measures[6].worst >=
@@ -401,7 +429,9 @@ MeshPartResult mesh_part(const Part& part,
         MeshPartOptions smaller = options;
         smaller.size = share * size;
         try {
-          MeshPartResult r = mesh_part_unchecked_input(part, smaller, on_stage);
+          LaidRails laid;
+          lay_rails(part, smaller, on_stage, laid);
+          MeshPartResult r = mesh_on_rails(part, smaller, on_stage, laid);
           r.size_capped_from = asked;
           r.size_failed_at = size;
           r.failed_because = e.what();
