@@ -1,9 +1,11 @@
 // Rule 11 of build_part(): patches meet only along the edges they share. An edge of one patch
 // that crosses another patch, lies inside it, or ends inside it, is refused with both names and
-// the place (brep-json.md: "Patches connect only through shared edges").
+// the place (brep-json.md: "Patches connect only through shared edges"); so are two patches
+// that share an edge and lie on top of each other there (one plane, the same side of it).
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 
 #include "build_state.hpp"
@@ -53,9 +55,65 @@ std::vector<double> crossings(const Polygon2& poly, Vec2 a, Vec2 b) {
   return t;
 }
 
+/// Two patches sharing an edge overlap there when they lie in one plane on the same side of
+/// it: their inward directions at the edge (in each patch's plane, perpendicular to the edge,
+/// towards its interior: left of its loops as oriented) agree. Every other check passes them
+/// (a patch given twice shares all its edges and vertices with its copy), and the mesh then
+/// holds two nodes at every place. Coplanar within the planarity tolerance: the sine of the
+/// angle between the inward directions, times the larger patch's extent, within the
+/// larger of the two patches' plane tolerances (kPlanarity x its diagonal).
+void check_overlaps_at_edges(const BuildState& s) {
+  const Part& part = s.part;
+  std::vector<double> extent(part.patches.size(), 0.0), plane_tol(part.patches.size(), 0.0);
+  for (std::size_t p = 0; p < part.patches.size(); ++p) {
+    Box3 box;
+    for (const Chain& c : s.chains[p])
+      for (VertexId v : c.vertices) box.add(part.vertices[v.index()].position);
+    extent[p] = norm(box.hi - box.lo);
+    plane_tol[p] = std::max(Tolerances::kOnEdge * part.size, Tolerances::kPlanarity * extent[p]);
+  }
+  // Per B-Rep edge (as its unordered vertex pair): each patch's inward direction there.
+  struct Side {
+    std::size_t patch;
+    Vec3 inward;
+  };
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<Side>> sides;
+  for (std::size_t p = 0; p < part.patches.size(); ++p) {
+    const Vec3 n = part.patches[p].frame.n;
+    for (const Chain& c : s.chains[p]) {
+      const std::size_t m = c.vertices.size();
+      for (std::size_t j = 0; j < m; ++j) {
+        const VertexId a = c.vertices[j], b = c.vertices[(j + 1) % m];
+        const Vec3 along =
+            part.vertices[b.index()].position - part.vertices[a.index()].position;
+        const auto key = std::minmax(a.value, b.value);
+        sides[{key.first, key.second}].push_back({p, normalized(cross(n, along))});
+      }
+    }
+  }
+  for (const auto& [key, list] : sides) {
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      for (std::size_t k = i + 1; k < list.size(); ++k) {
+        const Side& x = list[i];
+        const Side& y = list[k];
+        if (x.patch == y.patch || dot(x.inward, y.inward) <= 0.0) continue;
+        const double sine = norm(cross(x.inward, y.inward));
+        const double reach = std::max(extent[x.patch], extent[y.patch]);
+        if (sine * reach > std::max(plane_tol[x.patch], plane_tol[y.patch])) continue;
+        const Vec3 a = part.vertices[key.first].position, b = part.vertices[key.second].position;
+        fail(patch_name(s, x.patch) + " and " + patch_name(s, y.patch) + " overlap: they share " +
+             edge_name(s, VertexId(key.first), VertexId(key.second)) +
+             " and lie in one plane on the same side of it, near " + point(0.5 * (a + b)) +
+             " (a patch given twice, or folded back onto its neighbour)");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void check_patch_contacts(const BuildState& s) {
+  check_overlaps_at_edges(s);
   const Part& part = s.part;
   const double tol = Tolerances::kOnEdge * part.size;
   const Vec3 pad{tol, tol, tol};

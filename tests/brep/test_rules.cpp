@@ -520,6 +520,63 @@ TEST_CASE("rule 10: a circle split into arcs is accepted in every pose", "[brep]
   }
 }
 
+TEST_CASE("rule 10: two patches on one side of a shared edge, in one plane, overlap",
+          "[brep][rules]") {
+  // A patch given twice shares every edge and vertex with its copy, so no vertex or edge of
+  // one lies inside the other: only the sides of the shared edges tell (the mesher's
+  // self-check found two nodes at every place before, an internal error).
+  const std::vector<Vec3> square{{0, 0, 0}, {10, 0, 0}, {10, 10, 0}, {0, 10, 0}};
+  std::mt19937_64 rng(20261207);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const auto poses = [&](const RawPart& raw, bool refused, const std::string& message) {
+    for (int i = 0; i < 24; ++i) {
+      Transform t = rotation({u(rng), u(rng), u(rng) + 1e-3}, M_PI * u(rng));
+      if (i % 3 == 1) t = compose(mirror_x(), t);
+      if (i % 3 == 2) t = compose(scaling(i % 2 ? 1e-3 : 1e3), t);
+      CAPTURE(i);
+      if (refused)
+        CHECK_THAT(error_of(transformed(raw, t)), Contains(message));
+      else
+        CHECK_NOTHROW(build_part(transformed(raw, t)));
+    }
+  };
+  SECTION("a patch given twice, either way round") {
+    for (const Loops& copy : {Loops{{0, 1, 2, 3}}, Loops{{3, 2, 1, 0}}}) {
+      const RawPart raw = make_part(square, {patch("plate", {{0, 1, 2, 3}}), patch("copy", copy)});
+      CHECK_THAT(error_of(raw),
+                 Contains("patch \"plate\" (index 0) and patch \"copy\" (index 1) overlap: they "
+                          "share edge 0-1 and lie in one plane on the same side of it, near "
+                          "(5.0, 0.0, 0.0)"));
+      poses(raw, true, "overlap: they share edge 0-1");
+    }
+  }
+  SECTION("half a plate folded back onto the other half") {
+    std::vector<Vec3> v = square;
+    v.insert(v.end(), {{5, 0, 0}, {5, 10, 0}});
+    const RawPart raw =
+        make_part(v, {patch("plate", {{0, 4, 1, 2, 5, 3}}), patch("flap", {{0, 4, 5, 3}})});
+    CHECK_THAT(error_of(raw), Contains("overlap: they share edge 0-3"));
+    poses(raw, true, "overlap: they share edge 0-3");
+  }
+  SECTION("a flat seam, a fold of one degree and an insert filling a hole are no overlap") {
+    const double a = M_PI / 180.0;
+    std::vector<Vec3> v = square;
+    v.insert(v.end(), {{10, 10 * std::cos(a), 10 * std::sin(a)}, {0, 10 * std::cos(a),
+                                                                      10 * std::sin(a)}});
+    poses(make_part(v, {patch("plate", {{0, 1, 2, 3}}), patch("fold", {{0, 1, 4, 5}})}), false,
+          "");
+    std::vector<Vec3> w = square;
+    w.insert(w.end(), {{0, -10, 0}, {10, -10, 0}});
+    poses(make_part(w, {patch("plate", {{0, 1, 2, 3}}), patch("seam", {{4, 5, 1, 0}})}), false,
+          "");
+    std::vector<Vec3> x = square;
+    x.insert(x.end(), {{3, 3, 0}, {6, 3, 0}, {6, 6, 0}, {3, 6, 0}});
+    poses(make_part(x, {patch("plate", {{0, 1, 2, 3}, {4, 5, 6, 7}}),
+                        patch("insert", {{4, 5, 6, 7}})}),
+          false, "");
+  }
+}
+
 TEST_CASE("rule 11: the file's dual graph agrees with the shared edges", "[brep][rules]") {
   RawPart raw = t_junction();
   SECTION("a listed pair that shares no edge") {
