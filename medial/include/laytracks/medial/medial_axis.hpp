@@ -119,6 +119,12 @@ struct MedialOptions {
   /// polygonised curve given as straight edges (a 60-gon ellipse: turns of 5-20 degrees) has
   /// a branch at every vertex, each a long thin corridor of its own. 0 disables it.
   double flat_turn = kFlatCornerTurn;
+  /// The largest magnitude of a coordinate of the polygon's corners as the part gives them (in
+  /// 3D, before the projection to the patch's plane). Their rounding, about DBL_EPSILON x this,
+  /// makes a corner's turn uncertain by about that over its shorter side: a corner turning by
+  /// less than kStraightNoise x that is straight (docs/medial.md, step 5). 0: only the
+  /// polygon's own coordinates count.
+  double coordinate_scale = 0.0;
   /// The Voronoi backend (see VoronoiBackend).
   VoronoiBackend backend = VoronoiBackend::Boost;
 };
