@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <optional>
 
 #include "build_state.hpp"
@@ -60,75 +59,83 @@ std::vector<double> crossings(const Polygon2& poly, Vec2 a, Vec2 b) {
 /// towards its interior: left of its loops as oriented) agree. Every other check passes them
 /// (a patch given twice shares all its edges and vertices with its copy), and the mesh then
 /// holds two nodes at every place. Coplanar within the planarity tolerance: the sine of the
-/// angle between the inward directions, times the larger patch's extent, within the
-/// larger of the two patches' plane tolerances (kPlanarity x its diagonal).
-void check_overlaps_at_edges(const BuildState& s) {
+/// angle between the inward directions, times the larger patch's extent (its diagonal), within
+/// the larger of the two patches' plane tolerances (`plane_tol`, check_patch_contacts').
+void check_overlaps_at_edges(const BuildState& s,
+                             const std::vector<double>& extent,
+                             const std::vector<double>& plane_tol) {
   const Part& part = s.part;
-  std::vector<double> extent(part.patches.size(), 0.0), plane_tol(part.patches.size(), 0.0);
-  for (std::size_t p = 0; p < part.patches.size(); ++p) {
-    Box3 box;
-    for (const Chain& c : s.chains[p])
-      for (VertexId v : c.vertices) box.add(part.vertices[v.index()].position);
-    extent[p] = norm(box.hi - box.lo);
-    plane_tol[p] = std::max(Tolerances::kOnEdge * part.size, Tolerances::kPlanarity * extent[p]);
-  }
-  // Per B-Rep edge (as its unordered vertex pair): each patch's inward direction there.
+  // Per edge shared by two or more patches: each patch's inward direction there.
   struct Side {
     std::size_t patch;
     Vec3 inward;
   };
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<Side>> sides;
+  std::vector<std::vector<Side>> sides(part.edges.size());
   for (std::size_t p = 0; p < part.patches.size(); ++p) {
     const Vec3 n = part.patches[p].frame.n;
-    for (const Chain& c : s.chains[p]) {
-      const std::size_t m = c.vertices.size();
+    for (const Loop& loop : part.patches[p].loops) {
+      const std::size_t m = loop.vertices.size();
       for (std::size_t j = 0; j < m; ++j) {
-        const VertexId a = c.vertices[j], b = c.vertices[(j + 1) % m];
-        const Vec3 along =
-            part.vertices[b.index()].position - part.vertices[a.index()].position;
-        const auto key = std::minmax(a.value, b.value);
-        sides[{key.first, key.second}].push_back({p, normalized(cross(n, along))});
+        const EdgeId e = loop.edges[j];
+        if (part.edges[e.index()].patches.size() < 2) continue;
+        const Vec3 along = part.vertices[loop.vertices[(j + 1) % m].index()].position -
+                           part.vertices[loop.vertices[j].index()].position;
+        sides[e.index()].push_back({p, normalized(cross(n, along))});
       }
     }
   }
-  for (const auto& [key, list] : sides) {
-    for (std::size_t i = 0; i < list.size(); ++i) {
+  // The overlap reported is the one at the edge of least vertex pair, the first pair of its
+  // patches in their order.
+  std::optional<std::pair<std::size_t, std::pair<Side, Side>>> found;
+  const auto before = [&](std::size_t e, std::size_t f) {
+    const BrepEdge &x = part.edges[e], &y = part.edges[f];
+    return std::pair(x.a.value, x.b.value) < std::pair(y.a.value, y.b.value);
+  };
+  for (std::size_t e = 0; e < sides.size(); ++e) {
+    if (found && !before(e, found->first)) continue;
+    const std::vector<Side>& list = sides[e];
+    for (std::size_t i = 0; i < list.size() && !(found && found->first == e); ++i) {
       for (std::size_t k = i + 1; k < list.size(); ++k) {
         const Side& x = list[i];
         const Side& y = list[k];
-        if (x.patch == y.patch || dot(x.inward, y.inward) <= 0.0) continue;
+        if (dot(x.inward, y.inward) <= 0.0) continue;
         const double sine = norm(cross(x.inward, y.inward));
         const double reach = std::max(extent[x.patch], extent[y.patch]);
         if (sine * reach > std::max(plane_tol[x.patch], plane_tol[y.patch])) continue;
-        const Vec3 a = part.vertices[key.first].position, b = part.vertices[key.second].position;
-        fail(patch_name(s, x.patch) + " and " + patch_name(s, y.patch) + " overlap: they share " +
-             edge_name(s, VertexId(key.first), VertexId(key.second)) +
-             " and lie in one plane on the same side of it, near " + point(0.5 * (a + b)) +
-             " (a patch given twice, or folded back onto its neighbour)");
+        found = {e, {x, y}};
+        break;
       }
     }
   }
+  if (!found) return;
+  const BrepEdge& edge = part.edges[found->first];
+  const auto& [x, y] = found->second;
+  const Vec3 a = part.vertices[edge.a.index()].position;
+  const Vec3 b = part.vertices[edge.b.index()].position;
+  fail(patch_name(s, x.patch) + " and " + patch_name(s, y.patch) + " overlap: they share " +
+       edge_name(s, edge.a, edge.b) + " and lie in one plane on the same side of it, near " +
+       point(0.5 * (a + b)) + " (a patch given twice, or folded back onto its neighbour)");
 }
 
 }  // namespace
 
 void check_patch_contacts(const BuildState& s) {
-  check_overlaps_at_edges(s);
   const Part& part = s.part;
   const double tol = Tolerances::kOnEdge * part.size;
   const Vec3 pad{tol, tol, tol};
   std::vector<Box3> patch_boxes(part.patches.size());
-  std::vector<double> plane_tol(part.patches.size());
+  std::vector<double> extent(part.patches.size()), plane_tol(part.patches.size());
   for (std::size_t p = 0; p < part.patches.size(); ++p) {
     for (const Chain& c : s.chains[p])
       for (VertexId v : c.vertices) patch_boxes[p].add(part.vertices[v.index()].position);
     // A point is in a patch's plane within the planarity its own vertices were allowed.
-    const Vec3 diag = patch_boxes[p].hi - patch_boxes[p].lo;
-    plane_tol[p] = std::max(tol, Tolerances::kPlanarity * norm(diag));
+    extent[p] = norm(patch_boxes[p].hi - patch_boxes[p].lo);
+    plane_tol[p] = std::max(tol, Tolerances::kPlanarity * extent[p]);
     const Vec3 grow{plane_tol[p], plane_tol[p], plane_tol[p]};
     patch_boxes[p].add(patch_boxes[p].lo - grow);
     patch_boxes[p].add(patch_boxes[p].hi + grow);
   }
+  check_overlaps_at_edges(s, extent, plane_tol);
   std::vector<Box3> edge_boxes;
   for (const BrepEdge& e : part.edges) {
     Box3 box;
