@@ -15,6 +15,7 @@
 
 #include "fill.hpp"
 #include "laytracks/mesher/build_quads.hpp"
+#include "laytracks/mesher/quality.hpp"
 #include "patch_quads.hpp"
 
 namespace laytracks {
@@ -32,6 +33,15 @@ constexpr double kKiteGain = 0.02;
 /// of a piece ten times the edge beyond (a reflex corner of a generated bracket) left a long
 /// quad that the smoothing could not mend (worst 0.755 -> 0.721).
 constexpr double kKiteSidePiece = 1.5;
+
+/// Whether the quad a, b, c, d (counter-clockwise, in a plane) is beyond a threshold of
+/// quality.md that Table III counts: taper, skew or aspect ratio.
+bool beyond_table_iii(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  const auto lift = [](Vec2 p) { return Vec3{p.x, p.y, 0.0}; };
+  const QuadQuality m = measure_quad({lift(a), lift(b), lift(c), lift(d)}, Vec3{0.0, 0.0, 1.0});
+  return m.taper <= QualityThresholds::kTaper || m.skew_deg >= QualityThresholds::kSkewDeg ||
+         m.aspect_ratio >= QualityThresholds::kAspectRatio;
+}
 
 }  // namespace
 
@@ -137,6 +147,96 @@ std::size_t fold_corner_kites(const Part& part, QuadMesh& mesh) {
     for (std::uint32_t q : at_c) drop[q] = true;
     drop[q1] = drop[q2] = true;
     added.insert(added.end(), made.begin(), made.end());
+    ++folds;
+  }
+  if (folds > 0) replace_elements(mesh, drop, added);
+  return folds;
+}
+
+std::size_t fold_corner_reliefs(const Part& part, QuadMesh& mesh) {
+  const std::vector<bool> pinned = pinned_nodes(mesh);
+  const std::vector<bool> shared = shared_nodes(mesh);
+  const std::vector<bool> vertex = vertex_nodes(part, mesh);
+  const std::vector<std::vector<std::uint32_t>> around = quads_at_mesh_nodes(mesh);
+  std::vector<bool> drop(mesh.elements.size(), false);
+  std::vector<MeshElement> added;
+  std::size_t folds = 0;
+  using Quad = std::array<std::uint32_t, 4>;
+  // A wall node that may go: as fold_corner_kites' side nodes.
+  const auto side = [&](std::uint32_t v) {
+    return pinned[v] && !shared[v] && !vertex[v] && around[v].size() == 2;
+  };
+  // Quad q turned to start at node v.
+  const auto from = [&](std::uint32_t q, std::uint32_t v) {
+    const Quad& x = mesh.elements[q].nodes;
+    std::size_t i = 0;
+    while (x[i] != v) ++i;
+    return Quad{x[i], x[(i + 1) % 4], x[(i + 2) % 4], x[(i + 3) % 4]};
+  };
+  // The quad at node v other than q (v in two quads).
+  const auto other = [&](std::uint32_t v, std::uint32_t q) {
+    return around[v][0] == q ? around[v][1] : around[v][0];
+  };
+  for (std::uint32_t p = 0; p < mesh.nodes.size(); ++p) {
+    // The relief's reflex vertex: two quads sharing its edge to an inner node b.
+    if (!vertex[p] || around[p].size() != 2) continue;
+    std::uint32_t q1 = around[p][0], q2 = around[p][1];
+    Quad a1 = from(q1, p), a2 = from(q2, p);
+    if (a1[1] != a2[3]) {
+      std::swap(q1, q2);
+      std::swap(a1, a2);
+    }
+    // a1 = (p, b, y1, p1), a2 = (p, p3, y2, b).
+    if (a1[1] != a2[3]) continue;
+    const std::uint32_t b = a1[1], y1 = a1[2], p1 = a1[3], p3 = a2[1], y2 = a2[2];
+    if (pinned[b] || around[b].size() != 4 || !side(y1) || !side(y2)) continue;
+    // The quads beyond y1 and y2: q3 = (y1, b, d, a) and q4 = (y2, c, d, b), sharing b's edge
+    // to d.
+    const std::uint32_t q3 = other(y1, q1), q4 = other(y2, q2);
+    if (q3 == q4) continue;
+    const Quad a3 = from(q3, y1), a4 = from(q4, y2);
+    if (a3[1] != b || a4[3] != b || a3[2] != a4[2]) continue;
+    const std::uint32_t d = a3[2], a = a3[3], c = a4[1];
+    const std::uint32_t quads[4] = {q1, q2, q3, q4};
+    if (std::any_of(quads, quads + 4, [&](std::uint32_t q) {
+          return drop[q] || mesh.elements[q].patch != mesh.elements[q1].patch;
+        }))
+      continue;
+    const MeshElement& first = mesh.elements[q1];
+    const Frame& frame = part.patches[first.patch.index()].frame;
+    const auto at2 = [&](std::uint32_t v) { return frame.to_2d(mesh.nodes[v]); };
+    // Each wall node between its neighbours on one straight piece of boundary (then the
+    // two pieces become one edge), the piece to the relief no longer than kKiteSidePiece x
+    // the one beyond.
+    const auto straight = [&](std::uint32_t y, std::uint32_t toward, std::uint32_t beyond) {
+      const Vec2 u = at2(beyond) - at2(y), w = at2(toward) - at2(y);
+      return std::abs(cross(u, w)) <= kStraightBoundarySine * norm(u) * norm(w) &&
+             dot(u, w) < 0.0 && norm(w) <= kKiteSidePiece * norm(u);
+    };
+    if (!straight(y1, p1, a) || !straight(y2, p3, c)) continue;
+    const auto jacobian = [&](const Quad& x) {
+      return min_scaled_jacobian(at2(x[0]), at2(x[1]), at2(x[2]), at2(x[3]));
+    };
+    const auto beyond = [&](const Quad& x) {
+      return beyond_table_iii(at2(x[0]), at2(x[1]), at2(x[2]), at2(x[3])) ? 1 : 0;
+    };
+    // The four quads as two: (a, p1, p, d) and (p, p3, c, d).
+    const Quad n1{a, p1, p, d}, n2{p, p3, c, d};
+    double was = std::numeric_limits<double>::infinity();
+    int was_beyond = 0;
+    for (std::uint32_t q : quads) {
+      was = std::min(was, jacobian(mesh.elements[q].nodes));
+      was_beyond += beyond(mesh.elements[q].nodes);
+    }
+    const double now = std::min(jacobian(n1), jacobian(n2));
+    const int now_beyond = beyond(n1) + beyond(n2);
+    if (!(settled(now) >= settled(was)) || now_beyond >= was_beyond) continue;
+    for (std::uint32_t q : quads) drop[q] = true;
+    MeshElement m1 = first, m2 = first;
+    m1.nodes = n1;
+    m2.nodes = n2;
+    added.push_back(m1);
+    added.push_back(m2);
     ++folds;
   }
   if (folds > 0) replace_elements(mesh, drop, added);

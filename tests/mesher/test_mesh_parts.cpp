@@ -713,6 +713,19 @@ TEST_CASE("a strip's right-angle bend is one quad at its reflex corner, not two"
   });
 }
 
+TEST_CASE("a corner relief is two quads at its reflex vertex, not four", "[mesh][kite]") {
+  // A 10 x 6 plate at h = 1 with a 0.1 square bitten out of each corner (a sheet-metal corner
+  // relief): the axis forks 0.34 from the corner, its rails' feet land 0.34 along both sides,
+  // and each relief was four quads, the two of its fork's faces and the corner square split
+  // on its diagonal, all at taper <= 0.8 (72 quads, 22.2%). fold_corner_reliefs drops the two
+  // feet and the fork's node: two quads from the square's inner node, worst 0.707 as before,
+  // 64 quads, 8 tapered (12.5%).
+  check_test_parts({{"plate_corner_reliefs.json", 0.7}}, [](const MeshPartResult& r) {
+    return r.stats.corner_reliefs == 4 && r.mesh.elements.size() == 64 &&
+           r.quality.measures[2].bad_percent < 12.6;
+  });
+}
+
 TEST_CASE("the smoothing leaves no quad below the worst before it, up to 0.6", "[mesh][smooth]") {
   // star_5 at h = 0.096 - 1e-17 (twice finer than its default, as the test sets computed it;
   // at 0.096 the sweeps take another path), one patch of 38,795 quads: its

@@ -117,6 +117,7 @@ struct QuadStats {
   std::size_t edge_flips = 0;       ///< quad pairs re-split by flip_edges
   std::size_t thin_rows = 0;        ///< chains merged by merge_thin_rows
   std::size_t corner_kites = 0;     ///< kites folded by fold_corner_kites
+  std::size_t corner_reliefs = 0;   ///< reliefs folded by fold_corner_reliefs
   std::size_t slid_nodes = 0;       ///< boundary nodes moved by slide_boundary_nodes
   std::size_t late_rounds = 0;      ///< rounds of the late slides and flips kept (mesh_part)
   std::size_t cavity_refills = 0;   ///< cavities round bad quads filled again (refill_cavities)
@@ -166,6 +167,14 @@ std::size_t merge_thin_rows(const Part& part, QuadMesh& mesh);
 /// them take the vertex instead (the two quads at it become one), when the worst corner of the
 /// quads made beats the worst of those replaced by 0.02. Returns the folds made.
 std::size_t fold_corner_kites(const Part& part, QuadMesh& mesh);
+
+/// Corner reliefs folded (docs/mesher.md, "Corner reliefs"), run after the kites: where a
+/// B-Rep vertex p is in two quads sharing its edge to an inner node b of four quads, and the
+/// two quads' nodes across from p (y1, y2) lie on straight boundary of one patch (as the
+/// kites' side nodes), the four quads at b become two, (a, p1, p, d) and (p, p3, c, d): y1, y2
+/// and b go. Kept when fewer of the quads are beyond Table III's thresholds and the worst
+/// corner is no lower. Returns the folds made.
+std::size_t fold_corner_reliefs(const Part& part, QuadMesh& mesh);
 
 /// Boundary nodes slid apart (docs/mesher.md, "Sliding boundary nodes"), run after the
 /// smoothing (mesh_part then smooths round the nodes moved): a node of the mesh's boundary or
