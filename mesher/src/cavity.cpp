@@ -109,27 +109,18 @@ constexpr std::size_t kWholeNodes = 1000;
 /// three grids have 1.73x the rails' fill, quads h along the sides by 0.58 h across).
 constexpr double kWholeMoreQuads = 2.0;
 
-/// quality.md's measures of the quad a, b, c, d (counter-clockwise, in a plane). The re-fill
-/// counts what the report counts with the report's own measure (measure_quad), not the
+/// Whether a quad is beyond quality.md's skew or aspect-ratio threshold. The re-fill counts
+/// what the report counts with the report's own measure (measure_planar_quad), not the
 /// smoothing's cheaper midline_faults: a 60-degree rhombus's skew is 30 degrees exactly, and
 /// the two round it differently.
-QuadQuality planar_quality(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  return measure_quad(
-      {Vec3{a.x, a.y, 0.0}, Vec3{b.x, b.y, 0.0}, Vec3{c.x, c.y, 0.0}, Vec3{d.x, d.y, 0.0}},
-      Vec3{0.0, 0.0, 1.0});
-}
-
-/// Whether a quad is beyond quality.md's skew or aspect-ratio threshold.
 bool skewed_or_stretched(const QuadQuality& m) {
   return m.skew_deg >= QualityThresholds::kSkewDeg ||
          m.aspect_ratio >= QualityThresholds::kAspectRatio;
 }
 
-/// Whether the quad a, b, c, d is beyond a threshold of quality.md that Table III counts:
-/// taper, skew or aspect ratio.
+/// Whether the quad a, b, c, d is beyond a threshold that Table III counts.
 bool beyond_thresholds(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  const QuadQuality m = planar_quality(a, b, c, d);
-  return m.taper <= QualityThresholds::kTaper || skewed_or_stretched(m);
+  return beyond_table_iii(measure_planar_quad(a, b, c, d));
 }
 
 /// A set of ids cleared in O(1): an id is in it when its mark is the present stamp. Each user
@@ -1118,7 +1109,7 @@ class PatchRefill {
       for (std::size_t q = 0; q < count; ++q) {
         const Quad& x = l.quads[q];
         const Vec2 a = l.pos[x[0]], b = l.pos[x[1]], c = l.pos[x[2]], d = l.pos[x[3]];
-        if (skew            ? skewed_or_stretched(planar_quality(a, b, c, d))
+        if (skew            ? skewed_or_stretched(measure_planar_quad(a, b, c, d))
             : every_measure ? beyond_thresholds(a, b, c, d)
                             : quad_taper(a, b, c, d) <= QualityThresholds::kTaper)
           ++t;

@@ -34,31 +34,52 @@ constexpr double kKiteGain = 0.02;
 /// quad that the smoothing could not mend (worst 0.755 -> 0.721).
 constexpr double kKiteSidePiece = 1.5;
 
-/// Whether the quad a, b, c, d (counter-clockwise, in a plane) is beyond a threshold of
-/// quality.md that Table III counts: taper, skew or aspect ratio.
-bool beyond_table_iii(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  const auto lift = [](Vec2 p) { return Vec3{p.x, p.y, 0.0}; };
-  const QuadQuality m = measure_quad({lift(a), lift(b), lift(c), lift(d)}, Vec3{0.0, 0.0, 1.0});
-  return m.taper <= QualityThresholds::kTaper || m.skew_deg >= QualityThresholds::kSkewDeg ||
-         m.aspect_ratio >= QualityThresholds::kAspectRatio;
+using Quad = std::array<std::uint32_t, 4>;
+
+/// What both folds read of the mesh's nodes, once per pass.
+struct FoldNodes {
+  FoldNodes(const Part& part, const QuadMesh& m)
+      : mesh(m),
+        pinned(pinned_nodes(m)),
+        shared(shared_nodes(m)),
+        vertex(vertex_nodes(part, m)),
+        around(quads_at_mesh_nodes(m)) {}
+  /// A side node, which a fold may drop: on one patch's boundary (pinned, not shared), no
+  /// B-Rep vertex, in two quads.
+  bool side(std::uint32_t v) const {
+    return pinned[v] && !shared[v] && !vertex[v] && around[v].size() == 2;
+  }
+  /// Element q's nodes turned to start at node v.
+  Quad from(std::uint32_t q, std::uint32_t v) const {
+    const Quad& x = mesh.elements[q].nodes;
+    std::size_t i = 0;
+    while (x[i] != v) ++i;
+    return Quad{x[i], x[(i + 1) % 4], x[(i + 2) % 4], x[(i + 3) % 4]};
+  }
+  const QuadMesh& mesh;
+  const std::vector<bool> pinned, shared, vertex;
+  const std::vector<std::vector<std::uint32_t>> around;
+};
+
+/// Whether a side node at f lies on one line between its boundary neighbours `toward` (the
+/// corner it is dropped for) and `beyond`, no farther from `toward` than kKiteSidePiece x
+/// from `beyond`: the two boundary pieces can become one edge.
+bool straight_side(Vec2 f, Vec2 toward, Vec2 beyond) {
+  const Vec2 u = beyond - f, w = toward - f;
+  return std::abs(cross(u, w)) <= kStraightBoundarySine * norm(u) * norm(w) && dot(u, w) < 0.0 &&
+         norm(w) <= kKiteSidePiece * norm(u);
 }
 
 }  // namespace
 
 std::size_t fold_corner_kites(const Part& part, QuadMesh& mesh) {
-  const std::vector<bool> pinned = pinned_nodes(mesh);
-  const std::vector<bool> shared = shared_nodes(mesh);
-  const std::vector<bool> vertex = vertex_nodes(part, mesh);
-  const std::vector<std::vector<std::uint32_t>> around = quads_at_mesh_nodes(mesh);
+  const FoldNodes nodes(part, mesh);
+  const std::vector<bool>& vertex = nodes.vertex;
+  const std::vector<std::vector<std::uint32_t>>& around = nodes.around;
+  const auto side = [&](std::uint32_t v) { return nodes.side(v); };
   std::vector<bool> drop(mesh.elements.size(), false);
   std::vector<MeshElement> added;
   std::size_t folds = 0;
-  // A side node that may go: on a patch's boundary (pinned, not shared), no B-Rep vertex, in
-  // two quads.
-  const auto side = [&](std::uint32_t v) {
-    return pinned[v] && !shared[v] && !vertex[v] && around[v].size() == 2;
-  };
-  using Quad = std::array<std::uint32_t, 4>;
   for (std::uint32_t c = 0; c < mesh.nodes.size(); ++c) {
     // The corner: a B-Rep vertex that one quad meets (a convex corner's kite) or two quads
     // sharing an edge from it (a reflex corner split in two).
@@ -66,12 +87,7 @@ std::size_t fold_corner_kites(const Part& part, QuadMesh& mesh) {
     const std::vector<std::uint32_t>& at_c = around[c];
     if (std::any_of(at_c.begin(), at_c.end(), [&](std::uint32_t q) { return drop[q]; })) continue;
     // Each corner quad from c, counter-clockwise: (c, next, opposite, prev).
-    const auto from_c = [&](std::uint32_t q) {
-      const Quad& x = mesh.elements[q].nodes;
-      std::size_t i = 0;
-      while (x[i] != c) ++i;
-      return Quad{x[i], x[(i + 1) % 4], x[(i + 2) % 4], x[(i + 3) % 4]};
-    };
+    const auto from_c = [&](std::uint32_t q) { return nodes.from(q, c); };
     const Quad a1 = from_c(at_c.front()), a2 = from_c(at_c.back());
     // The side nodes: c's boundary neighbours, f1 last in its quad, f2 first; the inner node
     // g beside each, across which the quad beyond it lies. Two corner quads share c's edge to
@@ -117,9 +133,7 @@ std::size_t fold_corner_kites(const Part& part, QuadMesh& mesh) {
       const std::uint32_t next = e.nodes[(i + 1) % 4], prev = e.nodes[(i + 3) % 4];
       if (next != g && prev != g) return false;
       const std::uint32_t n = next == g ? prev : next;
-      const Vec2 u = at2(n) - at2(f), w = at2(c) - at2(f);
-      return std::abs(cross(u, w)) <= kStraightBoundarySine * norm(u) * norm(w) &&
-             dot(u, w) < 0.0 && norm(w) <= kKiteSidePiece * norm(u);
+      return straight_side(at2(f), at2(c), at2(n));
     };
     if (!straight(f1, g1, e1) || !straight(f2, g2, e2)) continue;
     // The quads as they are and as they would be, in the patch frame (where every element
@@ -154,34 +168,20 @@ std::size_t fold_corner_kites(const Part& part, QuadMesh& mesh) {
 }
 
 std::size_t fold_corner_reliefs(const Part& part, QuadMesh& mesh) {
-  const std::vector<bool> pinned = pinned_nodes(mesh);
-  const std::vector<bool> shared = shared_nodes(mesh);
-  const std::vector<bool> vertex = vertex_nodes(part, mesh);
-  const std::vector<std::vector<std::uint32_t>> around = quads_at_mesh_nodes(mesh);
+  const FoldNodes nodes(part, mesh);
+  const std::vector<std::vector<std::uint32_t>>& around = nodes.around;
   std::vector<bool> drop(mesh.elements.size(), false);
   std::vector<MeshElement> added;
   std::size_t folds = 0;
-  using Quad = std::array<std::uint32_t, 4>;
-  // A wall node that may go: as fold_corner_kites' side nodes.
-  const auto side = [&](std::uint32_t v) {
-    return pinned[v] && !shared[v] && !vertex[v] && around[v].size() == 2;
-  };
-  // Quad q turned to start at node v.
-  const auto from = [&](std::uint32_t q, std::uint32_t v) {
-    const Quad& x = mesh.elements[q].nodes;
-    std::size_t i = 0;
-    while (x[i] != v) ++i;
-    return Quad{x[i], x[(i + 1) % 4], x[(i + 2) % 4], x[(i + 3) % 4]};
-  };
   // The quad at node v other than q (v in two quads).
   const auto other = [&](std::uint32_t v, std::uint32_t q) {
     return around[v][0] == q ? around[v][1] : around[v][0];
   };
   for (std::uint32_t p = 0; p < mesh.nodes.size(); ++p) {
     // The relief's reflex vertex: two quads sharing its edge to an inner node b.
-    if (!vertex[p] || around[p].size() != 2) continue;
+    if (!nodes.vertex[p] || around[p].size() != 2) continue;
     std::uint32_t q1 = around[p][0], q2 = around[p][1];
-    Quad a1 = from(q1, p), a2 = from(q2, p);
+    Quad a1 = nodes.from(q1, p), a2 = nodes.from(q2, p);
     if (a1[1] != a2[3]) {
       std::swap(q1, q2);
       std::swap(a1, a2);
@@ -189,12 +189,12 @@ std::size_t fold_corner_reliefs(const Part& part, QuadMesh& mesh) {
     // a1 = (p, b, y1, p1), a2 = (p, p3, y2, b).
     if (a1[1] != a2[3]) continue;
     const std::uint32_t b = a1[1], y1 = a1[2], p1 = a1[3], p3 = a2[1], y2 = a2[2];
-    if (pinned[b] || around[b].size() != 4 || !side(y1) || !side(y2)) continue;
+    if (nodes.pinned[b] || around[b].size() != 4 || !nodes.side(y1) || !nodes.side(y2)) continue;
     // The quads beyond y1 and y2: q3 = (y1, b, d, a) and q4 = (y2, c, d, b), sharing b's edge
     // to d.
     const std::uint32_t q3 = other(y1, q1), q4 = other(y2, q2);
     if (q3 == q4) continue;
-    const Quad a3 = from(q3, y1), a4 = from(q4, y2);
+    const Quad a3 = nodes.from(q3, y1), a4 = nodes.from(q4, y2);
     if (a3[1] != b || a4[3] != b || a3[2] != a4[2]) continue;
     const std::uint32_t d = a3[2], a = a3[3], c = a4[1];
     const std::uint32_t quads[4] = {q1, q2, q3, q4};
@@ -208,17 +208,14 @@ std::size_t fold_corner_reliefs(const Part& part, QuadMesh& mesh) {
     // Each wall node between its neighbours on one straight piece of boundary (then the
     // two pieces become one edge), the piece to the relief no longer than kKiteSidePiece x
     // the one beyond.
-    const auto straight = [&](std::uint32_t y, std::uint32_t toward, std::uint32_t beyond) {
-      const Vec2 u = at2(beyond) - at2(y), w = at2(toward) - at2(y);
-      return std::abs(cross(u, w)) <= kStraightBoundarySine * norm(u) * norm(w) &&
-             dot(u, w) < 0.0 && norm(w) <= kKiteSidePiece * norm(u);
-    };
-    if (!straight(y1, p1, a) || !straight(y2, p3, c)) continue;
+    if (!straight_side(at2(y1), at2(p1), at2(a)) || !straight_side(at2(y2), at2(p3), at2(c)))
+      continue;
     const auto jacobian = [&](const Quad& x) {
       return min_scaled_jacobian(at2(x[0]), at2(x[1]), at2(x[2]), at2(x[3]));
     };
     const auto beyond = [&](const Quad& x) {
-      return beyond_table_iii(at2(x[0]), at2(x[1]), at2(x[2]), at2(x[3])) ? 1 : 0;
+      return beyond_table_iii(measure_planar_quad(at2(x[0]), at2(x[1]), at2(x[2]), at2(x[3]))) ? 1
+                                                                                           : 0;
     };
     // The four quads as two: (a, p1, p, d) and (p, p3, c, d).
     const Quad n1{a, p1, p, d}, n2{p, p3, c, d};

@@ -102,6 +102,16 @@ QuadQuality measure_quad(const std::array<Vec3, 4>& corners, Vec3 normal) {
   return out;
 }
 
+QuadQuality measure_planar_quad(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  const auto lift = [](Vec2 p) { return Vec3{p.x, p.y, 0.0}; };
+  return measure_quad({lift(a), lift(b), lift(c), lift(d)}, Vec3{0.0, 0.0, 1.0});
+}
+
+bool beyond_table_iii(const QuadQuality& m) {
+  return m.taper <= QualityThresholds::kTaper || m.skew_deg >= QualityThresholds::kSkewDeg ||
+         m.aspect_ratio >= QualityThresholds::kAspectRatio;
+}
+
 namespace {
 
 /// The value of measure m (in QualitySummary::measures order) of a quad.

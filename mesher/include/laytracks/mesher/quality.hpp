@@ -59,4 +59,11 @@ struct QualityThresholds {
 /// Invariant under rotation (of corners and normal together), translation and scaling.
 QuadQuality measure_quad(const std::array<Vec3, 4>& corners, Vec3 normal);
 
+/// measure_quad of the quad a, b, c, d (counter-clockwise) in a patch's plane (its frame).
+QuadQuality measure_planar_quad(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
+
+/// Whether a quad is beyond a threshold that the paper's Table III counts: taper, skew or
+/// aspect ratio.
+bool beyond_table_iii(const QuadQuality& m);
+
 }  // namespace laytracks
