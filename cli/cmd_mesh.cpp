@@ -146,6 +146,7 @@ int run_mesh(const std::vector<std::string>& argv) {
     doc["thin_rows_merged"] = r.stats.thin_rows;
     doc["corner_kites_folded"] = r.stats.corner_kites;
     doc["corner_reliefs_folded"] = r.stats.corner_reliefs;
+    doc["thin_bends_squared"] = r.stats.thin_bends;
     doc["boundary_nodes_slid"] = r.stats.slid_nodes;
     doc["late_rounds"] = r.stats.late_rounds;
     doc["cavity_refills"] = r.stats.cavity_refills;

@@ -268,6 +268,7 @@ MeshPartResult mesh_on_rails(const Part& part,
   r.stats.thin_rows = merge_thin_rows(part, r.mesh);
   r.stats.corner_kites = fold_corner_kites(part, r.mesh);
   r.stats.corner_reliefs = fold_corner_reliefs(part, r.mesh);
+  if (!r.adaptive) r.stats.thin_bends = square_thin_bends(part, r.mesh, r.size, options.smooth);
   r.times.quads = clock.lap();
   // The quads round the worst quads filled again where that beats what the smoothing alone
   // could do; before the smoothing, whose result differs between poses of a part (relaxation

@@ -118,6 +118,7 @@ struct QuadStats {
   std::size_t thin_rows = 0;        ///< chains merged by merge_thin_rows
   std::size_t corner_kites = 0;     ///< kites folded by fold_corner_kites
   std::size_t corner_reliefs = 0;   ///< reliefs folded by fold_corner_reliefs
+  std::size_t thin_bends = 0;       ///< cells meshed again by square_thin_bends
   std::size_t slid_nodes = 0;       ///< boundary nodes moved by slide_boundary_nodes
   std::size_t late_rounds = 0;      ///< rounds of the late slides and flips kept (mesh_part)
   std::size_t cavity_refills = 0;   ///< cavities round bad quads filled again (refill_cavities)
@@ -175,6 +176,16 @@ std::size_t fold_corner_kites(const Part& part, QuadMesh& mesh);
 /// and b go. Kept when fewer of the quads are beyond Table III's thresholds and the worst
 /// corner is no lower. Returns the folds made.
 std::size_t fold_corner_reliefs(const Part& part, QuadMesh& mesh);
+
+/// Bends of thin strips squared (docs/mesher.md, "Bends of thin strips"), run after the
+/// reliefs, uniform mode (`size` the element size h): the mesh is cut into cells at edges from
+/// boundary to boundary, and a cell with a reflex B-Rep vertex is meshed again as pieces
+/// between cuts from that vertex straight across the strip (at most 1.5 h long): rows of
+/// quads between two cuts, the face templates elsewhere. Kept when fewer quads are beyond
+/// Table III's thresholds and the worst corner is no lower, the old quads and the new each
+/// relaxed inside the cell by `sweeps` of the final smoothing's sweeps. Returns the cells
+/// meshed again.
+std::size_t square_thin_bends(const Part& part, QuadMesh& mesh, double size, int sweeps);
 
 /// Boundary nodes slid apart (docs/mesher.md, "Sliding boundary nodes"), run after the
 /// smoothing (mesh_part then smooths round the nodes moved): a node of the mesh's boundary or

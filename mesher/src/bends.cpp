@@ -1,0 +1,931 @@
+// Bends of thin strips squared (docs/mesher.md, "Bends of thin strips"). In a strip a few
+// quads wide, the rails of a bend come from the branch point on its corner's diagonal: the
+// bend is split on the diagonal from the reflex corner to the convex one (a mitre), and the
+// quads along it are trapezoids, tapered at any length under twice the strip's width. Cut
+// instead from the reflex corner straight across the strip (along the inward normals of its
+// two walls), the bend is a square with rows of rectangles on either side.
+//
+// The pass cuts the mesh into cells at *rung chains*: paths of one to kBendRowsMax edges
+// straight across the strip, from boundary to boundary through inner nodes of four quads (in
+// a strip of k rows, the lines of edges across it). A cell with a reflex B-Rep vertex between
+// its walls is meshed again as pieces between cuts from that vertex: a k x m grid where a
+// piece has two cuts (or rung chains) and two straight walls, the face templates elsewhere.
+// A cut that meets a rung chain, or lands beside its end, first joins the cell across it. The
+// cell's rung chains and B-Rep vertices stay; the nodes on its straight walls are spaced
+// again. Kept when, both relaxed, fewer quads are beyond Table III's thresholds and the worst
+// corner is no lower.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <numeric>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+#include "fill.hpp"
+#include "laytracks/mesher/build_quads.hpp"
+#include "laytracks/mesher/check.hpp"
+#include "laytracks/mesher/quality.hpp"
+#include "patch_quads.hpp"
+
+namespace laytracks {
+
+using namespace mesher_detail;
+
+namespace {
+
+using Quad = std::array<std::uint32_t, 4>;
+
+/// A rung chain has at most this many edges: a strip at most this many quads across.
+constexpr std::uint32_t kBendRowsMax = 3;
+/// A rung chain, and a cut from a reflex corner, is at most this x h long.
+constexpr double kBendCutMax = 2.5;
+/// A cell of more quads is no strip's (a strip's cells end at rung chains about every h):
+/// not meshed again, and no time spent on its boundary.
+constexpr std::size_t kBendCellQuads = 256;
+/// Rounds of joining the cells across the rung chains that cuts meet.
+constexpr int kBendJoins = 3;
+/// A reflex corner is cut when its walls turn by at least this (degrees): below it the two
+/// cuts land a sliver apart.
+constexpr double kBendTurnMin = 30.0;
+/// A cut lands on a wall within this (degrees) of parallel to the wall it leaves...
+constexpr double kBendParallel = 30.0;
+/// ... which is at least this x the cut long (a corner relief's step is not cut across).
+constexpr double kBendWallMin = 0.5;
+/// A cut lands on a kept node of the wall it reaches (a B-Rep vertex, a seam node) within this
+/// x its length of the point straight across; within it of a rung chain's end, the cell across
+/// the chain joins the cut's.
+constexpr double kBendSnap = 0.25;
+/// A piece that is not a grid (two cuts, two straight walls) spans at most this x h: a cell
+/// that opens into a wide region is not a strip.
+constexpr double kBendPieceSpan = 3.0;
+/// ... and has at most this many nodes (a bend's square with a relief in it has 10; a needle's
+/// walls at the spacing of its tip's chords would have thousands).
+constexpr std::size_t kBendPieceNodes = 24;
+/// Lengths over a spacing within this of a half, and lengths within this ratio of a bound,
+/// count as on it, alike in every pose (a grid-cell outline meets them exactly).
+constexpr double kBendTieRel = 1e-9;
+
+constexpr std::size_t kNoIndex = static_cast<std::size_t>(-1);
+
+std::uint64_t edge_key(std::size_t a, std::size_t b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint64_t>(b);
+}
+
+/// Edges for a straight wall of length `len` at spacing `h`: rounded, halves down, at least
+/// one.
+std::uint32_t edges_for(double len, double h) {
+  const double x = len / h;
+  const double f = std::floor(x);
+  const double r = x - f <= 0.5 + kBendTieRel ? f : f + 1.0;
+  return static_cast<std::uint32_t>(std::max(1.0, r));
+}
+
+struct Union {
+  std::vector<std::uint32_t> up;
+  explicit Union(std::size_t n) : up(n) { std::iota(up.begin(), up.end(), 0u); }
+  std::uint32_t find(std::uint32_t x) {
+    while (up[x] != x) x = up[x] = up[up[x]];
+    return x;
+  }
+  /// The smaller root stays: each cell's root is its least element, whatever the order.
+  void join(std::uint32_t a, std::uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) up[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+/// How an edge of a cell's boundary cycle lies.
+enum class Side : std::uint8_t { Rung, FreeWall, SeamWall };
+
+/// A node of a cell's remesh: a mesh node (id) or a new one (kNew), at pos (patch frame) and p3.
+struct Node {
+  static constexpr std::uint32_t kNew = 0xffffffffu;
+  std::uint32_t id = kNew;
+  Vec2 pos;
+  Vec3 p3;
+  bool free = false;  ///< off the cell's boundary: relaxed before the remesh is judged
+};
+
+struct Remesh {
+  std::vector<Node> nodes;
+  std::vector<Quad> quads;  ///< over `nodes`
+};
+
+class BendCells {
+ public:
+  BendCells(const Part& part, const QuadMesh& mesh, double h, int sweeps)
+      : part_(part),
+        mesh_(mesh),
+        h_(h),
+        sweeps_(sweeps),
+        pinned_(pinned_nodes(mesh)),
+        shared_(shared_nodes(mesh)),
+        vertex_(vertex_nodes(part, mesh)),
+        around_(quads_at_mesh_nodes(mesh)),
+        tol_(MeshTolerances::kOnBrep * part.size),
+        edges_(edges_by_lower_node(mesh, [](std::size_t) { return true; })) {}
+
+  /// What run() found: the elements to drop, those to add, and the new nodes (ids from the
+  /// mesh's node count on).
+  struct Changes {
+    std::vector<bool> drop;
+    std::vector<MeshElement> added;
+    std::vector<Vec3> nodes;
+    std::size_t cells = 0;
+  };
+
+  Changes run() {
+    find_rung_chains();
+    const std::size_t ne = mesh_.elements.size();
+    // Cells: quads joined across interior edges of their patch that are on no rung chain.
+    Union cells(ne);
+    for_each_edge([&](std::uint32_t a, std::uint32_t b, const Uses& u) {
+      if (inner(u) && rung_.count(edge_key(a, b)) == 0) cells.join(u.q[0], u.q[1]);
+    });
+    // Cells with a B-Rep vertex that is on no rung chain are candidates.
+    std::vector<std::vector<std::uint32_t>> cell_quads;
+    const auto gather = [&] {
+      cell_quads.assign(ne, {});
+      for (std::uint32_t q = 0; q < ne; ++q)
+        if (mesh_.elements[q].is_quad()) cell_quads[cells.find(q)].push_back(q);
+      for (std::vector<std::uint32_t>& quads : cell_quads) {
+        bool any = false;
+        for (std::uint32_t q : quads)
+          for (std::uint32_t v : mesh_.elements[q].nodes) any = any || (vertex_[v] && !on_rung_[v]);
+        if (!any) quads.clear();
+      }
+    };
+    gather();
+    // A cut that meets a rung chain, or lands beside one's end, joins the cell across the
+    // chain to its own; again with the joined cells, up to kBendJoins rounds. Only then is
+    // any cell meshed again: the cells are the same whatever their order.
+    for (int round = 0; round < kBendJoins; ++round) {
+      bool joined = false;
+      for (std::uint32_t c = 0; c < ne; ++c) {
+        if (cell_quads[c].empty()) continue;
+        std::vector<std::uint32_t> across;
+        remesh_cell(cell_quads[c], &across);
+        for (std::uint32_t q : across) {
+          if (cells.find(q) == cells.find(c)) continue;
+          cells.join(q, c);
+          joined = true;
+        }
+      }
+      if (!joined) break;
+      gather();
+    }
+    Changes ch;
+    ch.drop.assign(ne, false);
+    for (std::uint32_t c = 0; c < ne; ++c) {
+      if (cell_quads[c].empty()) continue;
+      const std::optional<Remesh> r = remesh_cell(cell_quads[c], nullptr);
+      if (!r) continue;
+      for (std::uint32_t q : cell_quads[c]) ch.drop[q] = true;
+      std::vector<std::uint32_t> id(r->nodes.size());
+      for (std::size_t i = 0; i < r->nodes.size(); ++i) {
+        if (r->nodes[i].id != Node::kNew) {
+          id[i] = r->nodes[i].id;
+        } else {
+          id[i] = static_cast<std::uint32_t>(mesh_.nodes.size() + ch.nodes.size());
+          ch.nodes.push_back(r->nodes[i].p3);
+        }
+      }
+      const MeshElement& first = mesh_.elements[cell_quads[c].front()];
+      for (const Quad& x : r->quads) {
+        MeshElement e = first;
+        e.nodes = Quad{id[x[0]], id[x[1]], id[x[2]], id[x[3]]};
+        ch.added.push_back(e);
+      }
+      ++ch.cells;
+    }
+    return ch;
+  }
+
+ private:
+  /// The elements at an edge: the first two, and how many.
+  struct Uses {
+    std::array<std::uint32_t, 2> q{};
+    std::uint32_t count = 0;
+    bool has(std::uint32_t e) const { return (count > 0 && q[0] == e) || (count > 1 && q[1] == e); }
+  };
+  Uses uses(std::uint32_t a, std::uint32_t b) const {
+    if (a > b) std::swap(a, b);
+    Uses u;
+    for (std::uint32_t k = edges_.start[a]; k < edges_.start[a + 1]; ++k)
+      if (edges_.uses[k].first == b) {
+        if (u.count < 2) u.q[u.count] = edges_.uses[k].second;
+        ++u.count;
+      }
+    return u;
+  }
+  /// An interior edge of one patch: two quads of it.
+  bool inner(const Uses& u) const {
+    return u.count == 2 && mesh_.elements[u.q[0]].patch == mesh_.elements[u.q[1]].patch;
+  }
+  /// fn(a, b, uses) for every edge of the mesh, a < b, in node order.
+  template <typename Fn>
+  void for_each_edge(Fn&& fn) const {
+    for (std::uint32_t a = 0; a + 1 < edges_.start.size(); ++a)
+      for (std::uint32_t k = edges_.start[a]; k < edges_.start[a + 1];) {
+        const std::uint32_t b = edges_.uses[k].first;
+        Uses u;
+        for (; k < edges_.start[a + 1] && edges_.uses[k].first == b; ++k) {
+          if (u.count < 2) u.q[u.count] = edges_.uses[k].second;
+          ++u.count;
+        }
+        fn(a, b, u);
+      }
+  }
+
+  /// Rung chains: from a boundary node, along an interior edge of one patch, on through inner
+  /// nodes of four quads by the edge opposite the one it came by, to a boundary node, in at
+  /// most kBendRowsMax edges and kBendCutMax x h.
+  void find_rung_chains() {
+    on_rung_.assign(mesh_.nodes.size(), false);
+    for_each_edge([&](std::uint32_t lo, std::uint32_t hi, const Uses& qs) {
+      if (!inner(qs)) return;
+      for (const bool flip : {false, true}) {
+        std::uint32_t a = lo, b = hi;
+        if (flip) std::swap(a, b);
+        if (!pinned_[a]) continue;
+        std::vector<std::uint32_t> chain{a, b};
+        double len = distance(mesh_.nodes[a], mesh_.nodes[b]);
+        bool ok = true;
+        while (ok && !pinned_[chain.back()]) {
+          const std::uint32_t x = chain.back(), from = chain[chain.size() - 2];
+          if (chain.size() > kBendRowsMax || around_[x].size() != 4) {
+            ok = false;
+            break;
+          }
+          // The edge at x in neither quad of the edge it came by.
+          const Uses in = uses(from, x);
+          std::uint32_t to = Node::kNew;
+          for (std::uint32_t q : around_[x]) {
+            if (in.has(q)) continue;
+            const Quad& e = mesh_.elements[q].nodes;
+            std::size_t i = 0;
+            while (e[i] != x) ++i;
+            for (const std::uint32_t y : {e[(i + 1) % 4], e[(i + 3) % 4]}) {
+              const Uses u = uses(x, y);
+              if (inner(u) && !in.has(u.q[0]) && !in.has(u.q[1]) &&
+                  mesh_.elements[u.q[0]].patch == mesh_.elements[qs.q[0]].patch)
+                to = y;
+            }
+          }
+          if (to == Node::kNew) {
+            ok = false;
+            break;
+          }
+          len += distance(mesh_.nodes[x], mesh_.nodes[to]);
+          chain.push_back(to);
+        }
+        // Not from a B-Rep vertex: the cuts start there (a mitre's diagonal is no rung).
+        if (!ok || vertex_[chain.front()] || vertex_[chain.back()] ||
+            chain.size() - 1 > kBendRowsMax ||
+            len > kBendCutMax * h_ * (1.0 + kBendTieRel))
+          continue;
+        for (std::size_t k = 0; k + 1 < chain.size(); ++k)
+          rung_.emplace(edge_key(chain[k], chain[k + 1]), chain.size() - 1);
+        for (std::uint32_t v : chain) on_rung_[v] = true;
+      }
+    });
+  }
+
+  /// The length of the straight B-Rep edge of patch p from its vertex at `from` through the
+  /// node at `toward` (0 when there is none: an arc's).
+  double wall_length(std::size_t p, Vec3 from, Vec3 toward) const {
+    for (const Loop& loop : part_.patches[p].loops)
+      for (EdgeId e : loop.edges) {
+        const BrepEdge& be = part_.edges[e.index()];
+        if (be.arc >= 0) continue;
+        Vec3 s = part_.vertices[be.a.index()].position, t = part_.vertices[be.b.index()].position;
+        if (distance(t, from) <= tol_) std::swap(s, t);
+        if (distance(s, from) > tol_) continue;
+        const Vec3 d = t - s;
+        const double len2 = dot(d, d);
+        const double u = len2 > 0.0 ? std::clamp(dot(toward - s, d) / len2, 0.0, 1.0) : 0.0;
+        if (distance(toward, s + u * d) <= tol_) return std::sqrt(len2);
+      }
+    return 0.0;
+  }
+
+  /// Whether the segment a-b (3D) lies on a straight (not arc) B-Rep edge of patch p: new
+  /// nodes may go on it.
+  bool on_straight_edge(std::size_t p, Vec3 a, Vec3 b) const {
+    for (const Loop& loop : part_.patches[p].loops)
+      for (EdgeId e : loop.edges) {
+        const BrepEdge& be = part_.edges[e.index()];
+        if (be.arc >= 0) continue;
+        const Vec3 s = part_.vertices[be.a.index()].position;
+        const Vec3 d = part_.vertices[be.b.index()].position - s;
+        const double len2 = dot(d, d);
+        const auto off = [&](Vec3 x) {
+          const double u = len2 > 0.0 ? std::clamp(dot(x - s, d) / len2, 0.0, 1.0) : 0.0;
+          return distance(x, s + u * d);
+        };
+        if (off(a) <= tol_ && off(b) <= tol_) return true;
+      }
+    return false;
+  }
+
+  /// The cell's quads meshed again, when that is kept. With `across`, only the quads beyond
+  /// the rung chains its cuts meet (or land beside the end of) are put there, and nothing is
+  /// meshed.
+  std::optional<Remesh> remesh_cell(const std::vector<std::uint32_t>& quads,
+                                    std::vector<std::uint32_t>* across) const;
+
+  const Part& part_;
+  const QuadMesh& mesh_;
+  const double h_;
+  const int sweeps_;
+  const std::vector<bool> pinned_, shared_, vertex_;
+  const std::vector<std::vector<std::uint32_t>> around_;
+  const double tol_;
+  const EdgesByNode edges_;
+  /// Edges on rung chains, with their chain's edge count; nodes on them.
+  std::unordered_map<std::uint64_t, std::size_t> rung_;
+  std::vector<bool> on_rung_;
+};
+
+std::optional<Remesh> BendCells::remesh_cell(const std::vector<std::uint32_t>& quads,
+                                             std::vector<std::uint32_t>* across) const {
+  static const bool debug = std::getenv("LAYTRACKS_DEBUG_BENDS") != nullptr;
+  const auto fail = [&](const char* why) -> std::optional<Remesh> {
+    if (debug)
+      std::fprintf(stderr, "bends: cell of %zu quads at node %u: %s\n", quads.size(),
+                   mesh_.elements[quads.front()].nodes[0], why);
+    return std::nullopt;
+  };
+  if (quads.size() > kBendCellQuads) return fail("large");
+  const MeshElement& first = mesh_.elements[quads.front()];
+  const std::size_t patch = first.patch.index();
+  const Frame& frame = part_.patches[patch].frame;
+  // The cell's boundary: the edges of its quads that no other quad of it uses, chained
+  // counter-clockwise from its least node (the same start in every pose).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> out_edges;
+  {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> all;
+    std::vector<std::uint64_t> keys;
+    for (std::uint32_t q : quads) {
+      const Quad& x = mesh_.elements[q].nodes;
+      for (std::size_t k = 0; k < 4; ++k) {
+        all.emplace_back(x[k], x[(k + 1) % 4]);
+        keys.push_back(edge_key(x[k], x[(k + 1) % 4]));
+      }
+    }
+    std::vector<std::uint64_t> sorted = keys;
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      const auto range = std::equal_range(sorted.begin(), sorted.end(), keys[i]);
+      if (range.second - range.first == 1) out_edges.push_back(all[i]);
+    }
+  }
+  std::sort(out_edges.begin(), out_edges.end());
+  for (std::size_t i = 1; i < out_edges.size(); ++i)
+    if (out_edges[i].first == out_edges[i - 1].first) return fail("pinched");
+  std::vector<std::uint32_t> cyc{out_edges.front().first};
+  for (;;) {
+    const auto it =
+        std::lower_bound(out_edges.begin(), out_edges.end(), std::make_pair(cyc.back(), 0u));
+    if (it == out_edges.end() || it->first != cyc.back()) return fail("open");
+    if (it->second == cyc.front()) break;
+    cyc.push_back(it->second);
+    if (cyc.size() > out_edges.size()) return fail("loops");
+  }
+  if (cyc.size() != out_edges.size()) return fail("holes");
+  const std::size_t n = cyc.size();
+  const auto next = [&](std::size_t i) { return (i + 1) % n; };
+  const auto prev = [&](std::size_t i) { return (i + n - 1) % n; };
+  std::vector<Side> side(n);
+  std::vector<Vec2> pos(n);
+  std::size_t rows = 0;  // the rung chains' edge count (all alike)
+  for (std::size_t i = 0; i < n; ++i) {
+    pos[i] = frame.to_2d(mesh_.nodes[cyc[i]]);
+    const std::uint64_t key = edge_key(cyc[i], cyc[next(i)]);
+    const Uses qs = uses(cyc[i], cyc[next(i)]);
+    if (qs.count == 1) {
+      side[i] = Side::FreeWall;
+    } else if (inner(qs)) {
+      side[i] = Side::Rung;
+      const auto it = rung_.find(key);
+      if (it == rung_.end()) return fail("inner edge");
+      if (rows != 0 && rows != it->second) return fail("rows differ");
+      rows = it->second;
+    } else {
+      side[i] = Side::SeamWall;
+    }
+  }
+  if (rows == 0) return fail("no rung chain");
+  // Kept nodes: B-Rep vertices, seam nodes, rung chains' nodes, and wall nodes where the wall
+  // turns.
+  std::vector<bool> keep(n, false), turns(n, false);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t v = cyc[i];
+    const Vec2 u = pos[next(i)] - pos[i], w = pos[i] - pos[prev(i)];
+    turns[i] = std::abs(cross(u, w)) > kStraightBoundarySine * norm(u) * norm(w) || dot(u, w) <= 0.0;
+    keep[i] = vertex_[v] || shared_[v] || side[i] == Side::Rung ||
+              side[prev(i)] == Side::Rung || turns[i];
+  }
+  // Cuts from reflex B-Rep vertices with free walls on both sides, along each wall's inward
+  // normal, to the first edge of the cycle they meet: a free wall on a straight B-Rep edge (or
+  // a kept node near the point across), within kBendCutMax x h.
+  // The quads across cycle edge e (a rung chain's) for `across`.
+  const auto join_across = [&](std::size_t e) {
+    if (across == nullptr) return;
+    const Uses u = uses(cyc[e], cyc[next(e)]);
+    for (std::uint32_t k = 0; k < std::min(u.count, 2u); ++k)
+      if (std::find(quads.begin(), quads.end(), u.q[k]) == quads.end()) across->push_back(u.q[k]);
+  };
+  struct Cut {
+    std::size_t from;
+    std::size_t edge;  ///< cycle edge it lands on (edge i: node i to i + 1)
+    double s;          ///< along that edge
+    std::size_t to_node = kNoIndex;  ///< a kept node it lands on instead
+    Vec2 at;
+  };
+  std::vector<Cut> cuts;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!vertex_[cyc[i]] || side[i] != Side::FreeWall || side[prev(i)] != Side::FreeWall ||
+        on_rung_[cyc[i]])
+      continue;
+    const Vec2 din = pos[i] - pos[prev(i)], dout = pos[next(i)] - pos[i];
+    const double turn = std::atan2(cross(din, dout), dot(din, dout)) * 180.0 / kPi;
+    if (!(turn <= -kBendTurnMin)) continue;  // reflex by at least kBendTurnMin
+    for (const Vec2 d : {din, dout}) {
+      const Vec2 normal = Vec2{-d.y, d.x} * (1.0 / norm(d));  // inward: the cell on the left
+      // The first edge the ray meets. Alike in every pose: edges within kBendTieRel of
+      // parallel to it are not met, an edge met within kBendTieRel of an end is met, and of
+      // two met at one distance (to kBendTieRel: at the node between them) the first in the
+      // cycle's order is taken.
+      double best = std::numeric_limits<double>::infinity();
+      std::size_t hit = kNoIndex;
+      double hit_s = 0.0;
+      for (std::size_t j = 0; j < n; ++j) {
+        if (j == i || next(j) == i) continue;
+        const Vec2 e = pos[next(j)] - pos[j];
+        const double den = cross(normal, e);
+        if (std::abs(den) <= kBendTieRel * norm(e)) continue;
+        const Vec2 ap = pos[j] - pos[i];
+        const double t = cross(ap, e) / den;
+        const double s = cross(ap, normal) / den;
+        if (s < -kBendTieRel || s > 1.0 + kBendTieRel || !(t > kBendTieRel * h_)) continue;
+        if (t < best * (1.0 - kBendTieRel)) {
+          best = t;
+          hit = j;
+          hit_s = std::clamp(s, 0.0, 1.0);
+        }
+      }
+      if (hit == kNoIndex || best > kBendCutMax * h_ * (1.0 + kBendTieRel)) continue;
+      // Across a strip: onto a wall (not a rung chain) within kBendParallel of parallel to the
+      // wall it leaves, which is at least kBendWallMin x the cut long (not a relief's step).
+      if (side[hit] == Side::Rung) {
+        join_across(hit);
+        continue;
+      }
+      const Vec2 e = pos[next(hit)] - pos[hit];
+      if (std::abs(cross(d, e)) > std::sin(kBendParallel * kPi / 180.0) * norm(d) * norm(e) ||
+          dot(d, e) >= 0.0)
+        continue;
+      const std::size_t along = d == din ? prev(i) : next(i);
+      if (wall_length(patch, mesh_.nodes[cyc[i]], mesh_.nodes[cyc[along]]) <
+          kBendWallMin * best * (1.0 - kBendTieRel))
+        continue;
+      Cut cut{i, hit, hit_s, kNoIndex, pos[i] + best * normal};
+      const double reach = kBendSnap * best * (1.0 + kBendTieRel);
+      // Near a rung chain's end (any node of the cycle within reach of the point across) the
+      // cell across the chain joins this one (a cut beside a rung would leave a sliver, or a
+      // piece of three sides); else the nearest kept node within reach takes the cut (the
+      // first in the cycle's order at one distance), or it lands on a free wall of a straight
+      // B-Rep edge.
+      bool near_rung = false;
+      double nearest = reach;
+      for (std::size_t k = 0; k < n; ++k) {
+        const double dk = distance(pos[k], cut.at);
+        if (dk > reach || k == i) continue;
+        if (!vertex_[cyc[k]])
+          for (const std::size_t edge : {k, prev(k)})
+            if (side[edge] == Side::Rung) {
+              near_rung = true;
+              join_across(edge);
+            }
+        if (keep[k] && pinned_[cyc[k]] && (cut.to_node == kNoIndex || dk < nearest * (1.0 - kBendTieRel))) {
+          cut.to_node = k;
+          nearest = dk;
+        }
+      }
+      if (near_rung) continue;
+      if (cut.to_node == kNoIndex) {
+        if (side[hit] != Side::FreeWall ||
+            !on_straight_edge(patch, mesh_.nodes[cyc[hit]], mesh_.nodes[cyc[next(hit)]]))
+          continue;
+      } else if (cut.to_node == i || cut.to_node == next(i) || cut.to_node == prev(i)) {
+        continue;
+      }
+      cuts.push_back(cut);
+    }
+  }
+  if (across != nullptr) return std::nullopt;
+  if (cuts.empty()) return fail("no cut");
+
+  // The nodes of the remesh: the cycle's, then each cut's foot and inner nodes.
+  Remesh r;
+  for (std::size_t i = 0; i < n; ++i) r.nodes.push_back(Node{cyc[i], pos[i], mesh_.nodes[cyc[i]]});
+  // A chord: the nodes of a cut from its reflex corner to its foot.
+  std::vector<std::vector<std::size_t>> chords;
+  std::vector<std::vector<std::pair<double, std::size_t>>> feet(n);  // new feet on each edge
+  for (const Cut& cut : cuts) {
+    const Vec2 to_pos = cut.to_node == kNoIndex ? cut.at : pos[cut.to_node];
+    const std::size_t to = cut.to_node;
+    // Two cuts that meet (other than at an end), or the same cut twice: the later goes.
+    bool clash = false;
+    for (const std::vector<std::size_t>& c : chords) {
+      const std::size_t a = c.front(), b = c.back();
+      if ((a == cut.from && b == to) || (b == cut.from && a == to)) clash = true;
+      const Vec2 pa = r.nodes[a].pos, pb = r.nodes[b].pos, pc = pos[cut.from];
+      if (a == cut.from || b == cut.from || (to != kNoIndex && (a == to || b == to))) continue;
+      if (segments_meet(pa, pb, pc, to_pos)) clash = true;
+    }
+    if (clash) continue;
+    std::vector<std::size_t> chord{cut.from};
+    for (std::size_t k = 1; k < rows; ++k) {
+      const double s = static_cast<double>(k) / static_cast<double>(rows);
+      chord.push_back(r.nodes.size());
+      const Vec2 p = pos[cut.from] + s * (to_pos - pos[cut.from]);
+      r.nodes.push_back(Node{Node::kNew, p, frame.to_3d(p), true});
+    }
+    if (to == kNoIndex) {
+      const Vec3 a = mesh_.nodes[cyc[cut.edge]], b = mesh_.nodes[cyc[next(cut.edge)]];
+      chord.push_back(r.nodes.size());
+      feet[cut.edge].emplace_back(cut.s, r.nodes.size());
+      r.nodes.push_back(Node{Node::kNew, cut.at, a + cut.s * (b - a)});
+    } else {
+      chord.push_back(to);
+    }
+    // Inner chord nodes in 3D on the line between its ends.
+    const Vec3 a3 = r.nodes[chord.front()].p3, b3 = r.nodes[chord.back()].p3;
+    for (std::size_t k = 1; k + 1 < chord.size(); ++k)
+      r.nodes[chord[k]].p3 = a3 + (static_cast<double>(k) / static_cast<double>(rows)) * (b3 - a3);
+    chords.push_back(std::move(chord));
+  }
+  // The cycle with the feet; feet at one point: no remesh.
+  std::vector<std::size_t> ring;
+  std::vector<Side> side_of(r.nodes.size(), Side::Rung);  // of the ring edge from a node
+  for (std::size_t i = 0; i < n; ++i) {
+    ring.push_back(i);
+    side_of[i] = side[i];
+    std::sort(feet[i].begin(), feet[i].end());
+    for (std::size_t k = 0; k < feet[i].size(); ++k) {
+      if (k > 0 && feet[i][k].first - feet[i][k - 1].first <= kBendTieRel)
+        return fail("feet meet");
+      ring.push_back(feet[i][k].second);
+      side_of[feet[i][k].second] = side[i];
+    }
+  }
+  std::vector<bool> kept(r.nodes.size(), true);  // chords' nodes are kept
+  for (std::size_t i = 0; i < n; ++i) kept[i] = keep[i];
+  // Fixed edges (rung chains' and chords'), by their nodes, with the chain they belong to.
+  std::unordered_map<std::uint64_t, std::size_t> fixed_edge;
+  {
+    std::size_t chain = 0;
+    for (std::size_t k = 0; k < ring.size(); ++k) {
+      const std::size_t a = ring[k], b = ring[(k + 1) % ring.size()];
+      if (side_of[a] != Side::Rung) continue;
+      // A new chain where the previous ring edge is not a rung edge of the same run.
+      if (side_of[ring[(k + ring.size() - 1) % ring.size()]] != Side::Rung) ++chain;
+      fixed_edge[edge_key(a, b)] = chain;
+    }
+    // A run of rung edges of more than `rows` edges is two chains end to end: split it.
+    std::unordered_map<std::size_t, std::size_t> count;
+    for (const auto& [key, c] : fixed_edge) ++count[c];
+    for (const auto& [c, edges] : count)
+      if (edges != rows) return fail("rung chains end to end");
+    for (const std::vector<std::size_t>& c : chords) {
+      ++chain;
+      for (std::size_t k = 0; k + 1 < c.size(); ++k) fixed_edge[edge_key(c[k], c[k + 1])] = chain;
+    }
+  }
+
+  // The pieces: the ring split along every chord.
+  struct Todo {
+    std::vector<std::size_t> poly;
+    std::vector<std::size_t> chords;  // indices into `chords`
+  };
+  std::vector<std::vector<std::size_t>> pieces;
+  std::vector<Todo> todo{{ring, {}}};
+  for (std::size_t c = 0; c < chords.size(); ++c) todo.back().chords.push_back(c);
+  while (!todo.empty()) {
+    Todo t = std::move(todo.back());
+    todo.pop_back();
+    if (t.chords.empty()) {
+      pieces.push_back(std::move(t.poly));
+      continue;
+    }
+    const std::vector<std::size_t>& c = chords[t.chords.front()];
+    const auto place = [&](std::size_t v) {
+      return static_cast<std::size_t>(std::find(t.poly.begin(), t.poly.end(), v) - t.poly.begin());
+    };
+    const std::size_t ia = place(c.front()), ib = place(c.back());
+    if (ia == t.poly.size() || ib == t.poly.size()) return fail("chord off its piece");
+    Todo t1, t2;
+    for (std::size_t k = ia;; k = (k + 1) % t.poly.size()) {
+      t1.poly.push_back(t.poly[k]);
+      if (k == ib) break;
+    }
+    for (std::size_t k = c.size() - 2; k >= 1; --k) t1.poly.push_back(c[k]);  // back along it
+    for (std::size_t k = ib;; k = (k + 1) % t.poly.size()) {
+      t2.poly.push_back(t.poly[k]);
+      if (k == ia) break;
+    }
+    for (std::size_t k = 1; k + 1 < c.size(); ++k) t2.poly.push_back(c[k]);
+    for (std::size_t k = 1; k < t.chords.size(); ++k) {
+      const std::vector<std::size_t>& d = chords[t.chords[k]];
+      const bool in1 = std::find(t1.poly.begin(), t1.poly.end(), d.front()) != t1.poly.end() &&
+                       std::find(t1.poly.begin(), t1.poly.end(), d.back()) != t1.poly.end();
+      (in1 ? t1 : t2).chords.push_back(t.chords[k]);
+    }
+    todo.push_back(std::move(t1));
+    todo.push_back(std::move(t2));
+  }
+
+  for (const std::vector<std::size_t>& piece : pieces) {
+    const std::size_t pn = piece.size();
+    // The piece's sides: a rung chain or a chord (fixed edges of one chain), a straight free
+    // wall between kept nodes (its inner nodes go and its edges are counted again), or one
+    // other edge (a seam's, an arc's: fixed).
+    struct Link {
+      std::vector<std::size_t> nodes;  // from its first node to its last, in the piece
+      bool wall = false;               // spaced again
+      std::size_t chain = kNoIndex;
+      double len = 0.0;
+      std::uint32_t edges = 0;
+    };
+    std::size_t start = kNoIndex;  // a place where a side begins: a kept node after a change
+    for (std::size_t k = 0; k < pn && start == kNoIndex; ++k) {
+      const std::uint64_t kin = edge_key(piece[(k + pn - 1) % pn], piece[k]);
+      const std::uint64_t kout = edge_key(piece[k], piece[(k + 1) % pn]);
+      const auto fin = fixed_edge.find(kin), fout = fixed_edge.find(kout);
+      const std::size_t cin = fin == fixed_edge.end() ? kNoIndex : fin->second;
+      const std::size_t cout = fout == fixed_edge.end() ? kNoIndex : fout->second;
+      if (kept[piece[k]] && (cin != cout || cin == kNoIndex)) start = k;
+    }
+    if (start == kNoIndex) return fail("piece without sides");
+    std::vector<Link> links;
+    for (std::size_t k = 0; k < pn;) {
+      const std::size_t a = piece[(start + k) % pn];
+      const auto f = fixed_edge.find(edge_key(a, piece[(start + k + 1) % pn]));
+      Link l;
+      l.nodes.push_back(a);
+      if (f != fixed_edge.end()) {
+        l.chain = f->second;
+        while (k < pn) {
+          const auto g =
+              fixed_edge.find(edge_key(piece[(start + k) % pn], piece[(start + k + 1) % pn]));
+          if (g == fixed_edge.end() || g->second != l.chain) break;
+          ++k;
+          l.nodes.push_back(piece[(start + k) % pn]);
+        }
+      } else {
+        do {
+          ++k;
+          l.nodes.push_back(piece[(start + k) % pn]);
+        } while (k < pn && !kept[piece[(start + k) % pn]]);
+        const Node& na = r.nodes[l.nodes.front()];
+        const Node& nb = r.nodes[l.nodes.back()];
+        if (side_of[a] == Side::FreeWall && on_straight_edge(patch, na.p3, nb.p3)) {
+          l.wall = true;
+        } else if (l.nodes.size() != 2) {
+          return fail("bent wall");
+        }
+      }
+      for (std::size_t j = 0; j + 1 < l.nodes.size(); ++j)
+        l.len += distance(r.nodes[l.nodes[j]].pos, r.nodes[l.nodes[j + 1]].pos);
+      l.edges = static_cast<std::uint32_t>(l.nodes.size() - 1);
+      links.push_back(std::move(l));
+    }
+    // A grid: two chains of `rows` edges across, two straight walls between them.
+    const bool grid = links.size() == 4 && links[0].wall == links[2].wall &&
+                      links[1].wall == links[3].wall && links[0].wall != links[1].wall &&
+                      links[links[0].wall ? 1 : 0].chain != kNoIndex &&
+                      links[links[0].wall ? 3 : 2].chain != kNoIndex;
+    if (grid) {
+      const std::size_t w = links[0].wall ? 0 : 1;
+      const std::uint32_t m = edges_for(0.5 * (links[w].len + links[w + 2].len), h_);
+      links[w].edges = links[w + 2].edges = m;
+    } else {
+      // Walls at the spacing across the chains and chords of the piece (the square of a bend
+      // is rows x rows), or h.
+      double chain_len = 0.0;
+      std::size_t count = 0;
+      for (const Link& l : links)
+        if (l.chain != kNoIndex) {
+          chain_len += l.len;
+          count += l.edges;
+        }
+      const double spacing = count > 0 ? std::min(h_, chain_len / static_cast<double>(count)) : h_;
+      double span = 0.0;
+      for (const Link& a : links)
+        for (const Link& b : links)
+          span = std::max(span, distance(r.nodes[a.nodes.front()].pos, r.nodes[b.nodes.front()].pos));
+      if (span > kBendPieceSpan * h_) return fail("wide piece");
+      std::uint32_t edges = 0;
+      for (Link& l : links) {
+        if (l.wall) l.edges = edges_for(l.len, spacing);
+        edges += l.edges;
+      }
+      if (edges % 2 != 0) {  // one more edge on the wall whose edges are longest
+        Link* longest = nullptr;
+        for (Link& l : links)
+          if (l.wall && (longest == nullptr ||
+                         l.len / l.edges > longest->len / longest->edges * (1.0 + kBendTieRel)))
+            longest = &l;
+        if (longest == nullptr) return fail("odd piece");
+        ++longest->edges;
+      }
+    }
+    // The piece's new cycle: each side's nodes, the walls' spaced evenly.
+    std::vector<std::vector<std::size_t>> sides;
+    for (const Link& l : links) {
+      std::vector<std::size_t> s;
+      if (!l.wall) {
+        s = l.nodes;
+      } else {
+        const Node a = r.nodes[l.nodes.front()], b = r.nodes[l.nodes.back()];
+        s.push_back(l.nodes.front());
+        for (std::uint32_t k = 1; k < l.edges; ++k) {
+          const double t = static_cast<double>(k) / l.edges;
+          s.push_back(r.nodes.size());
+          r.nodes.push_back(Node{Node::kNew, a.pos + t * (b.pos - a.pos), a.p3 + t * (b.p3 - a.p3)});
+        }
+        s.push_back(l.nodes.back());
+      }
+      sides.push_back(std::move(s));
+    }
+    if (grid) {
+      // A Coons grid: G(i, 0) along the first wall, G(m, j) up the chain after it, G(i, k) along
+      // the other wall backwards, G(0, j) down the chain before it.
+      const std::size_t w = links[0].wall ? 0 : 1;
+      const std::vector<std::size_t>& bottom = sides[w];
+      const std::vector<std::size_t>& right = sides[(w + 1) % 4];
+      const std::vector<std::size_t>& top = sides[(w + 2) % 4];
+      const std::vector<std::size_t>& left = sides[(w + 3) % 4];
+      const std::size_t m = bottom.size() - 1, k = right.size() - 1;
+      if (top.size() != m + 1 || left.size() != k + 1) return fail("grid sides differ");
+      std::vector<std::size_t> g((m + 1) * (k + 1));
+      const auto at = [&](std::size_t i, std::size_t j) -> std::size_t& { return g[j * (m + 1) + i]; };
+      for (std::size_t i = 0; i <= m; ++i) {
+        at(i, 0) = bottom[i];
+        at(i, k) = top[m - i];
+      }
+      for (std::size_t j = 0; j <= k; ++j) {
+        at(m, j) = right[j];
+        at(0, j) = left[k - j];
+      }
+      for (std::size_t j = 1; j < k; ++j)
+        for (std::size_t i = 1; i < m; ++i) {
+          const double s = static_cast<double>(i) / static_cast<double>(m),
+                       t = static_cast<double>(j) / static_cast<double>(k);
+          const auto coons = [&](auto get) {
+            return (1 - t) * get(at(i, 0)) + t * get(at(i, k)) + (1 - s) * get(at(0, j)) +
+                   s * get(at(m, j)) -
+                   ((1 - s) * (1 - t) * get(at(0, 0)) + s * (1 - t) * get(at(m, 0)) +
+                    (1 - s) * t * get(at(0, k)) + s * t * get(at(m, k)));
+          };
+          const Vec2 p = coons([&](std::size_t v) { return r.nodes[v].pos; });
+          const Vec3 p3 = coons([&](std::size_t v) { return r.nodes[v].p3; });
+          at(i, j) = r.nodes.size();
+          r.nodes.push_back(Node{Node::kNew, p, p3, true});
+        }
+      for (std::size_t j = 0; j < k; ++j)
+        for (std::size_t i = 0; i < m; ++i)
+          r.quads.push_back(Quad{static_cast<std::uint32_t>(at(i, j)),
+                                 static_cast<std::uint32_t>(at(i + 1, j)),
+                                 static_cast<std::uint32_t>(at(i + 1, j + 1)),
+                                 static_cast<std::uint32_t>(at(i, j + 1))});
+      continue;
+    }
+    std::vector<std::size_t> cycle;
+    for (const std::vector<std::size_t>& s : sides) cycle.insert(cycle.end(), s.begin(), s.end() - 1);
+    if (cycle.size() % 2 != 0) return fail("odd cycle");
+    if (cycle.size() > kBendPieceNodes) return fail("piece of many nodes");
+    // Any other piece: the face templates, in the piece's own frame.
+    std::vector<Vec2> poly;
+    for (std::size_t v : cycle) poly.push_back(r.nodes[v].pos);
+    const LocalFrame cf(poly);
+    FaceInput face;
+    for (const Vec2 p : poly) face.cycle.push_back(cf.to_local(p));
+    face.free_nodes.assign(poly.size(), false);
+    FaceSide all;
+    all.kind = FaceSide::Kind::Boundary;
+    all.edges = static_cast<std::uint32_t>(poly.size());
+    face.sides.push_back(all);
+    const std::optional<FaceMesh> fm = fill_cavity(face);
+    if (!fm) {
+      if (debug) {
+        std::fprintf(stderr, "bends: no fill of");
+        for (const Vec2 q : poly) std::fprintf(stderr, " (%.4f %.4f)", q.x, q.y);
+        std::fprintf(stderr, "\n");
+      }
+      return fail("no fill");
+    }
+    std::vector<std::size_t> id = cycle;
+    for (const Vec2 q : fm->interior) {
+      id.push_back(r.nodes.size());
+      const Vec2 p = cf.to_patch(q);
+      r.nodes.push_back(Node{Node::kNew, p, frame.to_3d(p), true});
+    }
+    for (const auto& x : fm->quads)
+      r.quads.push_back(Quad{static_cast<std::uint32_t>(id[x[0]]), static_cast<std::uint32_t>(id[x[1]]),
+                             static_cast<std::uint32_t>(id[x[2]]), static_cast<std::uint32_t>(id[x[3]])});
+  }
+  // The old quads and the new, each relaxed inside the cell's cycle (in the cycle's own frame:
+  // the same problem in every pose), then judged: kept when fewer quads are beyond Table III's
+  // thresholds and the worst corner is no lower.
+  const LocalFrame cf(pos);
+  const auto relax_and_judge = [&](std::vector<Vec2>& at, const std::vector<bool>& fixed,
+                                   const std::vector<Quad>& qs, int& beyond, double& worst) {
+    if (sweeps_ > 0) final_sweeps(at, fixed, qs, sweeps_, kFinalEscapeTarget);
+    beyond = 0;
+    worst = std::numeric_limits<double>::infinity();
+    for (const Quad& x : qs) {
+      beyond += beyond_table_iii(measure_planar_quad(at[x[0]], at[x[1]], at[x[2]], at[x[3]])) ? 1 : 0;
+      worst = std::min(worst, min_scaled_jacobian(at[x[0]], at[x[1]], at[x[2]], at[x[3]]));
+    }
+  };
+  int was_beyond = 0, now_beyond = 0;
+  double was = 0.0, now = 0.0;
+  {
+    // The old: the cycle's nodes fixed, the cell's inner nodes free.
+    std::vector<std::uint32_t> ids(cyc.begin(), cyc.end());
+    std::unordered_map<std::uint32_t, std::uint32_t> local;
+    for (std::uint32_t i = 0; i < n; ++i) local[cyc[i]] = i;
+    std::vector<Quad> qs;
+    for (std::uint32_t q : quads) {
+      Quad x = mesh_.elements[q].nodes;
+      for (std::uint32_t& v : x) {
+        const auto it = local.emplace(v, static_cast<std::uint32_t>(ids.size()));
+        if (it.second) ids.push_back(v);
+        v = it.first->second;
+      }
+      qs.push_back(x);
+    }
+    std::vector<Vec2> at;
+    for (std::uint32_t v : ids) at.push_back(cf.to_local(frame.to_2d(mesh_.nodes[v])));
+    std::vector<bool> fixed(ids.size(), false);
+    std::fill(fixed.begin(), fixed.begin() + static_cast<std::ptrdiff_t>(n), true);
+    relax_and_judge(at, fixed, qs, was_beyond, was);
+  }
+  {
+    std::vector<Vec2> at;
+    std::vector<bool> fixed;
+    for (const Node& v : r.nodes) {
+      at.push_back(cf.to_local(v.pos));
+      fixed.push_back(!v.free);
+    }
+    relax_and_judge(at, fixed, r.quads, now_beyond, now);
+    for (std::size_t k = 0; k < r.nodes.size(); ++k)
+      if (r.nodes[k].free) {
+        r.nodes[k].pos = cf.to_patch(at[k]);
+        r.nodes[k].p3 = frame.to_3d(r.nodes[k].pos);
+      }
+  }
+  const bool keep_it = now_beyond < was_beyond && settled(now) >= settled(was);
+  if (debug)
+    std::fprintf(stderr,
+                 "bends: cell of %zu quads at node %u (%zu round, %zu cuts, %zu pieces, %zu rows): "
+                 "%zu quads, beyond %d -> %d, worst %.3f -> %.3f%s\n",
+                 quads.size(), mesh_.elements[quads.front()].nodes[0], n, chords.size(),
+                 pieces.size(), rows, r.quads.size(), was_beyond, now_beyond, was, now,
+                 keep_it ? " kept" : "");
+  if (!keep_it) return std::nullopt;
+  // Only the nodes the quads use.
+  std::vector<std::size_t> renum(r.nodes.size(), kNoIndex);
+  Remesh used;
+  for (Quad& x : r.quads)
+    for (std::uint32_t& v : x) {
+      if (renum[v] == kNoIndex) {
+        renum[v] = used.nodes.size();
+        used.nodes.push_back(r.nodes[v]);
+      }
+      v = static_cast<std::uint32_t>(renum[v]);
+    }
+  used.quads = std::move(r.quads);
+  return used;
+}
+
+}  // namespace
+
+std::size_t square_thin_bends(const Part& part, QuadMesh& mesh, double size, int sweeps) {
+  if (!(size > 0.0)) return 0;
+  BendCells::Changes ch = BendCells(part, mesh, size, sweeps).run();
+  if (ch.cells == 0) return 0;
+  mesh.nodes.insert(mesh.nodes.end(), ch.nodes.begin(), ch.nodes.end());
+  replace_elements(mesh, ch.drop, ch.added);
+  return ch.cells;
+}
+
+}  // namespace laytracks
