@@ -286,8 +286,7 @@ class BendCells {
         }
         // Not from a B-Rep vertex: the cuts start there (a mitre's diagonal is no rung).
         if (!ok || vertex_[chain.front()] || vertex_[chain.back()] ||
-            chain.size() - 1 > kBendRowsMax ||
-            len > kBendCutMax * h_ * (1.0 + kBendTieRel))
+            chain.size() - 1 > kBendRowsMax || len > kBendCutMax * h_ * (1.0 + kBendTieRel))
           continue;
         for (std::size_t k = 0; k + 1 < chain.size(); ++k)
           rung_.emplace(edge_key(chain[k], chain[k + 1]), chain.size() - 1);
@@ -333,6 +332,7 @@ class BendCells {
     return false;
   }
 
+  class Cell;
   /// The cell's quads meshed again, when that is kept. With `across`, only the quads beyond
   /// the rung chains its cuts meet (or land beside the end of) are put there, and nothing is
   /// meshed.
@@ -352,27 +352,71 @@ class BendCells {
   std::vector<bool> on_rung_;
 };
 
-std::optional<Remesh> BendCells::remesh_cell(const std::vector<std::uint32_t>& quads,
-                                             std::vector<std::uint32_t>* across) const {
-  static const bool debug = std::getenv("LAYTRACKS_DEBUG_BENDS") != nullptr;
-  const auto fail = [&](const char* why) -> std::optional<Remesh> {
+/// One cell meshed again (BendCells::remesh_cell), step by step: its boundary cycle, the cuts
+/// from its reflex corners, the chords they become and the ring with their feet, the pieces
+/// between the chords, the quads of each piece, and the judgement. A step that cannot go on
+/// returns why (for LAYTRACKS_DEBUG_BENDS); nullptr is on.
+class BendCells::Cell {
+ public:
+  Cell(const BendCells& b, const std::vector<std::uint32_t>& quads)
+      : b_(b),
+        quads_(quads),
+        patch_(b.mesh_.elements[quads.front()].patch.index()),
+        frame_(b.part_.patches[patch_].frame) {}
+
+  std::optional<Remesh> remesh(std::vector<std::uint32_t>* across) {
+    static const bool debug = std::getenv("LAYTRACKS_DEBUG_BENDS") != nullptr;
+    const char* why = quads_.size() > kBendCellQuads ? "large" : boundary();
+    if (why == nullptr) {
+      find_cuts(across);
+      if (across != nullptr) return std::nullopt;
+      why = cuts_.empty() ? "no cut" : lay_chords();
+    }
+    if (why == nullptr) why = split();
+    for (std::size_t k = 0; why == nullptr && k < pieces_.size(); ++k) why = mesh_piece(pieces_[k]);
+    if (why != nullptr) {
+      if (debug)
+        std::fprintf(stderr, "bends: cell of %zu quads at node %u: %s\n", quads_.size(),
+                     b_.mesh_.elements[quads_.front()].nodes[0], why);
+      return std::nullopt;
+    }
+    const bool keep = judge();
     if (debug)
-      std::fprintf(stderr, "bends: cell of %zu quads at node %u: %s\n", quads.size(),
-                   mesh_.elements[quads.front()].nodes[0], why);
-    return std::nullopt;
-  };
-  if (quads.size() > kBendCellQuads) return fail("large");
-  const MeshElement& first = mesh_.elements[quads.front()];
-  const std::size_t patch = first.patch.index();
-  const Frame& frame = part_.patches[patch].frame;
-  // The cell's boundary: the edges of its quads that no other quad of it uses, chained
-  // counter-clockwise from its least node (the same start in every pose).
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> out_edges;
-  {
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> all;
+      std::fprintf(stderr,
+                   "bends: cell of %zu quads at node %u (%zu round, %zu cuts, %zu pieces, %zu "
+                   "rows): %zu quads, beyond %d -> %d, worst %.3f -> %.3f%s\n",
+                   quads_.size(), b_.mesh_.elements[quads_.front()].nodes[0], n_, chords_.size(),
+                   pieces_.size(), rows_, r_.quads.size(), was_beyond_, now_beyond_, was_, now_,
+                   keep ? " kept" : "");
+    if (!keep) return std::nullopt;
+    // Only the nodes the quads use.
+    std::vector<std::size_t> renum(r_.nodes.size(), kNoIndex);
+    Remesh used;
+    for (Quad& x : r_.quads)
+      for (std::uint32_t& v : x) {
+        if (renum[v] == kNoIndex) {
+          renum[v] = used.nodes.size();
+          used.nodes.push_back(r_.nodes[v]);
+        }
+        v = static_cast<std::uint32_t>(renum[v]);
+      }
+    used.quads = std::move(r_.quads);
+    return used;
+  }
+
+ private:
+  std::size_t next(std::size_t i) const { return (i + 1) % n_; }
+  std::size_t prev(std::size_t i) const { return (i + n_ - 1) % n_; }
+
+  /// The cell's boundary: the edges of its quads that no other quad of it uses, chained
+  /// counter-clockwise from its least node (the same start in every pose); how each lies, the
+  /// rung chains' edge count, and the nodes kept (B-Rep vertices, seam nodes, rung chains'
+  /// nodes, wall nodes where the wall turns).
+  const char* boundary() {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> out_edges, all;
     std::vector<std::uint64_t> keys;
-    for (std::uint32_t q : quads) {
-      const Quad& x = mesh_.elements[q].nodes;
+    for (std::uint32_t q : quads_) {
+      const Quad& x = b_.mesh_.elements[q].nodes;
       for (std::size_t k = 0; k < 4; ++k) {
         all.emplace_back(x[k], x[(k + 1) % 4]);
         keys.push_back(edge_key(x[k], x[(k + 1) % 4]));
@@ -384,341 +428,344 @@ std::optional<Remesh> BendCells::remesh_cell(const std::vector<std::uint32_t>& q
       const auto range = std::equal_range(sorted.begin(), sorted.end(), keys[i]);
       if (range.second - range.first == 1) out_edges.push_back(all[i]);
     }
-  }
-  std::sort(out_edges.begin(), out_edges.end());
-  for (std::size_t i = 1; i < out_edges.size(); ++i)
-    if (out_edges[i].first == out_edges[i - 1].first) return fail("pinched");
-  std::vector<std::uint32_t> cyc{out_edges.front().first};
-  for (;;) {
-    const auto it =
-        std::lower_bound(out_edges.begin(), out_edges.end(), std::make_pair(cyc.back(), 0u));
-    if (it == out_edges.end() || it->first != cyc.back()) return fail("open");
-    if (it->second == cyc.front()) break;
-    cyc.push_back(it->second);
-    if (cyc.size() > out_edges.size()) return fail("loops");
-  }
-  if (cyc.size() != out_edges.size()) return fail("holes");
-  const std::size_t n = cyc.size();
-  const auto next = [&](std::size_t i) { return (i + 1) % n; };
-  const auto prev = [&](std::size_t i) { return (i + n - 1) % n; };
-  std::vector<Side> side(n);
-  std::vector<Vec2> pos(n);
-  std::size_t rows = 0;  // the rung chains' edge count (all alike)
-  for (std::size_t i = 0; i < n; ++i) {
-    pos[i] = frame.to_2d(mesh_.nodes[cyc[i]]);
-    const std::uint64_t key = edge_key(cyc[i], cyc[next(i)]);
-    const Uses qs = uses(cyc[i], cyc[next(i)]);
-    if (qs.count == 1) {
-      side[i] = Side::FreeWall;
-    } else if (inner(qs)) {
-      side[i] = Side::Rung;
-      const auto it = rung_.find(key);
-      if (it == rung_.end()) return fail("inner edge");
-      if (rows != 0 && rows != it->second) return fail("rows differ");
-      rows = it->second;
-    } else {
-      side[i] = Side::SeamWall;
+    std::sort(out_edges.begin(), out_edges.end());
+    for (std::size_t i = 1; i < out_edges.size(); ++i)
+      if (out_edges[i].first == out_edges[i - 1].first) return "pinched";
+    cyc_ = {out_edges.front().first};
+    for (;;) {
+      const auto it =
+          std::lower_bound(out_edges.begin(), out_edges.end(), std::make_pair(cyc_.back(), 0u));
+      if (it == out_edges.end() || it->first != cyc_.back()) return "open";
+      if (it->second == cyc_.front()) break;
+      cyc_.push_back(it->second);
+      if (cyc_.size() > out_edges.size()) return "loops";
     }
+    if (cyc_.size() != out_edges.size()) return "holes";
+    n_ = cyc_.size();
+    side_.resize(n_);
+    pos_.resize(n_);
+    for (std::size_t i = 0; i < n_; ++i) {
+      pos_[i] = frame_.to_2d(b_.mesh_.nodes[cyc_[i]]);
+      const Uses qs = b_.uses(cyc_[i], cyc_[next(i)]);
+      if (qs.count == 1) {
+        side_[i] = Side::FreeWall;
+      } else if (b_.inner(qs)) {
+        side_[i] = Side::Rung;
+        const auto it = b_.rung_.find(edge_key(cyc_[i], cyc_[next(i)]));
+        if (it == b_.rung_.end()) return "inner edge";
+        if (rows_ != 0 && rows_ != it->second) return "rows differ";
+        rows_ = it->second;
+      } else {
+        side_[i] = Side::SeamWall;
+      }
+    }
+    if (rows_ == 0) return "no rung chain";
+    keep_.assign(n_, false);
+    for (std::size_t i = 0; i < n_; ++i) {
+      const std::uint32_t v = cyc_[i];
+      const Vec2 u = pos_[next(i)] - pos_[i], w = pos_[i] - pos_[prev(i)];
+      const bool turns =
+          std::abs(cross(u, w)) > kStraightBoundarySine * norm(u) * norm(w) || dot(u, w) <= 0.0;
+      keep_[i] = b_.vertex_[v] || b_.shared_[v] || side_[i] == Side::Rung ||
+                 side_[prev(i)] == Side::Rung || turns;
+    }
+    return nullptr;
   }
-  if (rows == 0) return fail("no rung chain");
-  // Kept nodes: B-Rep vertices, seam nodes, rung chains' nodes, and wall nodes where the wall
-  // turns.
-  std::vector<bool> keep(n, false), turns(n, false);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t v = cyc[i];
-    const Vec2 u = pos[next(i)] - pos[i], w = pos[i] - pos[prev(i)];
-    turns[i] = std::abs(cross(u, w)) > kStraightBoundarySine * norm(u) * norm(w) || dot(u, w) <= 0.0;
-    keep[i] = vertex_[v] || shared_[v] || side[i] == Side::Rung ||
-              side[prev(i)] == Side::Rung || turns[i];
-  }
-  // Cuts from reflex B-Rep vertices with free walls on both sides, along each wall's inward
-  // normal, to the first edge of the cycle they meet: a free wall on a straight B-Rep edge (or
-  // a kept node near the point across), within kBendCutMax x h.
-  // The quads across cycle edge e (a rung chain's) for `across`.
-  const auto join_across = [&](std::size_t e) {
+
+  /// The quads across cycle edge e (a rung chain's), for `across`.
+  void join_across(std::size_t e, std::vector<std::uint32_t>* across) const {
     if (across == nullptr) return;
-    const Uses u = uses(cyc[e], cyc[next(e)]);
+    const Uses u = b_.uses(cyc_[e], cyc_[next(e)]);
     for (std::uint32_t k = 0; k < std::min(u.count, 2u); ++k)
-      if (std::find(quads.begin(), quads.end(), u.q[k]) == quads.end()) across->push_back(u.q[k]);
-  };
-  struct Cut {
-    std::size_t from;
-    std::size_t edge;  ///< cycle edge it lands on (edge i: node i to i + 1)
-    double s;          ///< along that edge
-    std::size_t to_node = kNoIndex;  ///< a kept node it lands on instead
-    Vec2 at;
-  };
-  std::vector<Cut> cuts;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!vertex_[cyc[i]] || side[i] != Side::FreeWall || side[prev(i)] != Side::FreeWall ||
-        on_rung_[cyc[i]])
-      continue;
-    const Vec2 din = pos[i] - pos[prev(i)], dout = pos[next(i)] - pos[i];
-    const double turn = std::atan2(cross(din, dout), dot(din, dout)) * 180.0 / kPi;
-    if (!(turn <= -kBendTurnMin)) continue;  // reflex by at least kBendTurnMin
-    for (const Vec2 d : {din, dout}) {
-      const Vec2 normal = Vec2{-d.y, d.x} * (1.0 / norm(d));  // inward: the cell on the left
-      // The first edge the ray meets. Alike in every pose: edges within kBendTieRel of
-      // parallel to it are not met, an edge met within kBendTieRel of an end is met, and of
-      // two met at one distance (to kBendTieRel: at the node between them) the first in the
-      // cycle's order is taken.
-      double best = std::numeric_limits<double>::infinity();
-      std::size_t hit = kNoIndex;
-      double hit_s = 0.0;
-      for (std::size_t j = 0; j < n; ++j) {
-        if (j == i || next(j) == i) continue;
-        const Vec2 e = pos[next(j)] - pos[j];
-        const double den = cross(normal, e);
-        if (std::abs(den) <= kBendTieRel * norm(e)) continue;
-        const Vec2 ap = pos[j] - pos[i];
-        const double t = cross(ap, e) / den;
-        const double s = cross(ap, normal) / den;
-        if (s < -kBendTieRel || s > 1.0 + kBendTieRel || !(t > kBendTieRel * h_)) continue;
-        if (t < best * (1.0 - kBendTieRel)) {
-          best = t;
-          hit = j;
-          hit_s = std::clamp(s, 0.0, 1.0);
+      if (std::find(quads_.begin(), quads_.end(), u.q[k]) == quads_.end())
+        across->push_back(u.q[k]);
+  }
+
+  /// Cuts from reflex B-Rep vertices with free walls on both sides, along each wall's inward
+  /// normal, to the first edge of the cycle they meet: a free wall on a straight B-Rep edge (or
+  /// a kept node near the point across), within kBendCutMax x h. A cut that meets a rung chain
+  /// or lands beside its end puts the quads across it in `across` instead.
+  void find_cuts(std::vector<std::uint32_t>* across) {
+    const double h = b_.h_;
+    for (std::size_t i = 0; i < n_; ++i) {
+      if (!b_.vertex_[cyc_[i]] || side_[i] != Side::FreeWall || side_[prev(i)] != Side::FreeWall ||
+          b_.on_rung_[cyc_[i]])
+        continue;
+      const Vec2 din = pos_[i] - pos_[prev(i)], dout = pos_[next(i)] - pos_[i];
+      const double turn = std::atan2(cross(din, dout), dot(din, dout)) * 180.0 / kPi;
+      if (!(turn <= -kBendTurnMin)) continue;  // reflex by at least kBendTurnMin
+      for (const Vec2 d : {din, dout}) {
+        const Vec2 normal = Vec2{-d.y, d.x} * (1.0 / norm(d));  // inward: the cell on the left
+        // The first edge the ray meets. Alike in every pose: edges within kBendTieRel of
+        // parallel to it are not met, an edge met within kBendTieRel of an end is met, and of
+        // two met at one distance (to kBendTieRel: at the node between them) the first in the
+        // cycle's order is taken.
+        double best = std::numeric_limits<double>::infinity();
+        std::size_t hit = kNoIndex;
+        double hit_s = 0.0;
+        for (std::size_t j = 0; j < n_; ++j) {
+          if (j == i || next(j) == i) continue;
+          const Vec2 e = pos_[next(j)] - pos_[j];
+          const double den = cross(normal, e);
+          if (std::abs(den) <= kBendTieRel * norm(e)) continue;
+          const Vec2 ap = pos_[j] - pos_[i];
+          const double t = cross(ap, e) / den;
+          const double s = cross(ap, normal) / den;
+          if (s < -kBendTieRel || s > 1.0 + kBendTieRel || !(t > kBendTieRel * h)) continue;
+          if (t < best * (1.0 - kBendTieRel)) {
+            best = t;
+            hit = j;
+            hit_s = std::clamp(s, 0.0, 1.0);
+          }
         }
-      }
-      if (hit == kNoIndex || best > kBendCutMax * h_ * (1.0 + kBendTieRel)) continue;
-      // Across a strip: onto a wall (not a rung chain) within kBendParallel of parallel to the
-      // wall it leaves, which is at least kBendWallMin x the cut long (not a relief's step).
-      if (side[hit] == Side::Rung) {
-        join_across(hit);
-        continue;
-      }
-      const Vec2 e = pos[next(hit)] - pos[hit];
-      if (std::abs(cross(d, e)) > std::sin(kBendParallel * kPi / 180.0) * norm(d) * norm(e) ||
-          dot(d, e) >= 0.0)
-        continue;
-      const std::size_t along = d == din ? prev(i) : next(i);
-      if (wall_length(patch, mesh_.nodes[cyc[i]], mesh_.nodes[cyc[along]]) <
-          kBendWallMin * best * (1.0 - kBendTieRel))
-        continue;
-      Cut cut{i, hit, hit_s, kNoIndex, pos[i] + best * normal};
-      const double reach = kBendSnap * best * (1.0 + kBendTieRel);
-      // Near a rung chain's end (any node of the cycle within reach of the point across) the
-      // cell across the chain joins this one (a cut beside a rung would leave a sliver, or a
-      // piece of three sides); else the nearest kept node within reach takes the cut (the
-      // first in the cycle's order at one distance), or it lands on a free wall of a straight
-      // B-Rep edge.
-      bool near_rung = false;
-      double nearest = reach;
-      for (std::size_t k = 0; k < n; ++k) {
-        const double dk = distance(pos[k], cut.at);
-        if (dk > reach || k == i) continue;
-        if (!vertex_[cyc[k]])
-          for (const std::size_t edge : {k, prev(k)})
-            if (side[edge] == Side::Rung) {
-              near_rung = true;
-              join_across(edge);
-            }
-        if (keep[k] && pinned_[cyc[k]] && (cut.to_node == kNoIndex || dk < nearest * (1.0 - kBendTieRel))) {
-          cut.to_node = k;
-          nearest = dk;
-        }
-      }
-      if (near_rung) continue;
-      if (cut.to_node == kNoIndex) {
-        if (side[hit] != Side::FreeWall ||
-            !on_straight_edge(patch, mesh_.nodes[cyc[hit]], mesh_.nodes[cyc[next(hit)]]))
+        if (hit == kNoIndex || best > kBendCutMax * h * (1.0 + kBendTieRel)) continue;
+        // Across a strip: onto a wall (not a rung chain) within kBendParallel of parallel to
+        // the wall it leaves, which is at least kBendWallMin x the cut long (not a relief's
+        // step).
+        if (side_[hit] == Side::Rung) {
+          join_across(hit, across);
           continue;
-      } else if (cut.to_node == i || cut.to_node == next(i) || cut.to_node == prev(i)) {
+        }
+        const Vec2 e = pos_[next(hit)] - pos_[hit];
+        if (std::abs(cross(d, e)) > std::sin(kBendParallel * kPi / 180.0) * norm(d) * norm(e) ||
+            dot(d, e) >= 0.0)
+          continue;
+        const std::size_t along = d == din ? prev(i) : next(i);
+        if (b_.wall_length(patch_, b_.mesh_.nodes[cyc_[i]], b_.mesh_.nodes[cyc_[along]]) <
+            kBendWallMin * best * (1.0 - kBendTieRel))
+          continue;
+        Cut cut{i, hit, hit_s, kNoIndex, pos_[i] + best * normal};
+        const double reach = kBendSnap * best * (1.0 + kBendTieRel);
+        // Near a rung chain's end (any node of the cycle within reach of the point across)
+        // the cell across the chain joins this one (a cut beside a rung would leave a sliver,
+        // or a piece of three sides); else the nearest kept node within reach takes the cut
+        // (the first in the cycle's order at one distance), or it lands on a free wall of a
+        // straight B-Rep edge.
+        bool near_rung = false;
+        double nearest = reach;
+        for (std::size_t k = 0; k < n_; ++k) {
+          const double dk = distance(pos_[k], cut.at);
+          if (dk > reach || k == i) continue;
+          if (!b_.vertex_[cyc_[k]])
+            for (const std::size_t edge : {k, prev(k)})
+              if (side_[edge] == Side::Rung) {
+                near_rung = true;
+                join_across(edge, across);
+              }
+          if (keep_[k] && b_.pinned_[cyc_[k]] &&
+              (cut.to_node == kNoIndex || dk < nearest * (1.0 - kBendTieRel))) {
+            cut.to_node = k;
+            nearest = dk;
+          }
+        }
+        if (near_rung) continue;
+        if (cut.to_node == kNoIndex) {
+          if (side_[hit] != Side::FreeWall ||
+              !b_.on_straight_edge(patch_, b_.mesh_.nodes[cyc_[hit]],
+                                   b_.mesh_.nodes[cyc_[next(hit)]]))
+            continue;
+        } else if (cut.to_node == i || cut.to_node == next(i) || cut.to_node == prev(i)) {
+          continue;
+        }
+        cuts_.push_back(cut);
+      }
+    }
+  }
+
+  /// The remesh's nodes (the cycle's, then each cut's inner nodes and foot), the chords (the
+  /// nodes of each cut, `rows_` edges; of two that cross the later goes), the ring (the cycle
+  /// with the feet), and the fixed edges (rung chains' and chords', by chain).
+  const char* lay_chords() {
+    for (std::size_t i = 0; i < n_; ++i)
+      r_.nodes.push_back(Node{cyc_[i], pos_[i], b_.mesh_.nodes[cyc_[i]]});
+    std::vector<std::vector<std::pair<double, std::size_t>>> feet(n_);  // new feet by edge
+    for (const Cut& cut : cuts_) {
+      const Vec2 to_pos = cut.to_node == kNoIndex ? cut.at : pos_[cut.to_node];
+      const std::size_t to = cut.to_node;
+      bool clash = false;
+      for (const std::vector<std::size_t>& c : chords_) {
+        const std::size_t a = c.front(), e = c.back();
+        if ((a == cut.from && e == to) || (e == cut.from && a == to)) clash = true;
+        if (a == cut.from || e == cut.from || (to != kNoIndex && (a == to || e == to))) continue;
+        if (segments_meet(r_.nodes[a].pos, r_.nodes[e].pos, pos_[cut.from], to_pos)) clash = true;
+      }
+      if (clash) continue;
+      std::vector<std::size_t> chord{cut.from};
+      for (std::size_t k = 1; k < rows_; ++k) {
+        const double s = static_cast<double>(k) / static_cast<double>(rows_);
+        chord.push_back(r_.nodes.size());
+        const Vec2 p = pos_[cut.from] + s * (to_pos - pos_[cut.from]);
+        r_.nodes.push_back(Node{Node::kNew, p, frame_.to_3d(p), true});
+      }
+      if (to == kNoIndex) {
+        const Vec3 a = b_.mesh_.nodes[cyc_[cut.edge]], e = b_.mesh_.nodes[cyc_[next(cut.edge)]];
+        chord.push_back(r_.nodes.size());
+        feet[cut.edge].emplace_back(cut.s, r_.nodes.size());
+        r_.nodes.push_back(Node{Node::kNew, cut.at, a + cut.s * (e - a)});
+      } else {
+        chord.push_back(to);
+      }
+      // Inner chord nodes in 3D on the line between its ends.
+      const Vec3 a3 = r_.nodes[chord.front()].p3, b3 = r_.nodes[chord.back()].p3;
+      for (std::size_t k = 1; k + 1 < chord.size(); ++k)
+        r_.nodes[chord[k]].p3 =
+            a3 + (static_cast<double>(k) / static_cast<double>(rows_)) * (b3 - a3);
+      chords_.push_back(std::move(chord));
+    }
+    side_of_.assign(r_.nodes.size(), Side::Rung);
+    for (std::size_t i = 0; i < n_; ++i) {
+      ring_.push_back(i);
+      side_of_[i] = side_[i];
+      std::sort(feet[i].begin(), feet[i].end());
+      for (std::size_t k = 0; k < feet[i].size(); ++k) {
+        if (k > 0 && feet[i][k].first - feet[i][k - 1].first <= kBendTieRel) return "feet meet";
+        ring_.push_back(feet[i][k].second);
+        side_of_[feet[i][k].second] = side_[i];
+      }
+    }
+    kept_.assign(r_.nodes.size(), true);  // the chords' nodes are kept
+    for (std::size_t i = 0; i < n_; ++i) kept_[i] = keep_[i];
+    std::size_t chain = 0;
+    for (std::size_t k = 0; k < ring_.size(); ++k) {
+      const std::size_t a = ring_[k], e = ring_[(k + 1) % ring_.size()];
+      if (side_of_[a] != Side::Rung) continue;
+      // A new chain where the previous ring edge is not a rung edge of the same run.
+      if (side_of_[ring_[(k + ring_.size() - 1) % ring_.size()]] != Side::Rung) ++chain;
+      fixed_edge_[edge_key(a, e)] = chain;
+    }
+    // A run of rung edges of more than `rows_` edges is two chains end to end.
+    std::unordered_map<std::size_t, std::size_t> count;
+    for (const auto& [key, c] : fixed_edge_) ++count[c];
+    for (const auto& [c, edges] : count)
+      if (edges != rows_) return "rung chains end to end";
+    for (const std::vector<std::size_t>& c : chords_) {
+      ++chain;
+      for (std::size_t k = 0; k + 1 < c.size(); ++k) fixed_edge_[edge_key(c[k], c[k + 1])] = chain;
+    }
+    return nullptr;
+  }
+
+  /// The pieces: the ring split along every chord.
+  const char* split() {
+    struct Todo {
+      std::vector<std::size_t> poly;
+      std::vector<std::size_t> chords;  // indices into chords_
+    };
+    std::vector<Todo> todo{{ring_, {}}};
+    for (std::size_t c = 0; c < chords_.size(); ++c) todo.back().chords.push_back(c);
+    while (!todo.empty()) {
+      Todo t = std::move(todo.back());
+      todo.pop_back();
+      if (t.chords.empty()) {
+        pieces_.push_back(std::move(t.poly));
         continue;
       }
-      cuts.push_back(cut);
+      const std::vector<std::size_t>& c = chords_[t.chords.front()];
+      const auto place = [&](std::size_t v) {
+        return static_cast<std::size_t>(std::find(t.poly.begin(), t.poly.end(), v) -
+                                        t.poly.begin());
+      };
+      const std::size_t ia = place(c.front()), ib = place(c.back());
+      if (ia == t.poly.size() || ib == t.poly.size()) return "chord off its piece";
+      Todo t1, t2;
+      for (std::size_t k = ia;; k = (k + 1) % t.poly.size()) {
+        t1.poly.push_back(t.poly[k]);
+        if (k == ib) break;
+      }
+      for (std::size_t k = c.size() - 2; k >= 1; --k) t1.poly.push_back(c[k]);  // back along it
+      for (std::size_t k = ib;; k = (k + 1) % t.poly.size()) {
+        t2.poly.push_back(t.poly[k]);
+        if (k == ia) break;
+      }
+      for (std::size_t k = 1; k + 1 < c.size(); ++k) t2.poly.push_back(c[k]);
+      for (std::size_t k = 1; k < t.chords.size(); ++k) {
+        const std::vector<std::size_t>& d = chords_[t.chords[k]];
+        const bool in1 = std::find(t1.poly.begin(), t1.poly.end(), d.front()) != t1.poly.end() &&
+                         std::find(t1.poly.begin(), t1.poly.end(), d.back()) != t1.poly.end();
+        (in1 ? t1 : t2).chords.push_back(t.chords[k]);
+      }
+      todo.push_back(std::move(t1));
+      todo.push_back(std::move(t2));
     }
-  }
-  if (across != nullptr) return std::nullopt;
-  if (cuts.empty()) return fail("no cut");
-
-  // The nodes of the remesh: the cycle's, then each cut's foot and inner nodes.
-  Remesh r;
-  for (std::size_t i = 0; i < n; ++i) r.nodes.push_back(Node{cyc[i], pos[i], mesh_.nodes[cyc[i]]});
-  // A chord: the nodes of a cut from its reflex corner to its foot.
-  std::vector<std::vector<std::size_t>> chords;
-  std::vector<std::vector<std::pair<double, std::size_t>>> feet(n);  // new feet on each edge
-  for (const Cut& cut : cuts) {
-    const Vec2 to_pos = cut.to_node == kNoIndex ? cut.at : pos[cut.to_node];
-    const std::size_t to = cut.to_node;
-    // Two cuts that meet (other than at an end), or the same cut twice: the later goes.
-    bool clash = false;
-    for (const std::vector<std::size_t>& c : chords) {
-      const std::size_t a = c.front(), b = c.back();
-      if ((a == cut.from && b == to) || (b == cut.from && a == to)) clash = true;
-      const Vec2 pa = r.nodes[a].pos, pb = r.nodes[b].pos, pc = pos[cut.from];
-      if (a == cut.from || b == cut.from || (to != kNoIndex && (a == to || b == to))) continue;
-      if (segments_meet(pa, pb, pc, to_pos)) clash = true;
-    }
-    if (clash) continue;
-    std::vector<std::size_t> chord{cut.from};
-    for (std::size_t k = 1; k < rows; ++k) {
-      const double s = static_cast<double>(k) / static_cast<double>(rows);
-      chord.push_back(r.nodes.size());
-      const Vec2 p = pos[cut.from] + s * (to_pos - pos[cut.from]);
-      r.nodes.push_back(Node{Node::kNew, p, frame.to_3d(p), true});
-    }
-    if (to == kNoIndex) {
-      const Vec3 a = mesh_.nodes[cyc[cut.edge]], b = mesh_.nodes[cyc[next(cut.edge)]];
-      chord.push_back(r.nodes.size());
-      feet[cut.edge].emplace_back(cut.s, r.nodes.size());
-      r.nodes.push_back(Node{Node::kNew, cut.at, a + cut.s * (b - a)});
-    } else {
-      chord.push_back(to);
-    }
-    // Inner chord nodes in 3D on the line between its ends.
-    const Vec3 a3 = r.nodes[chord.front()].p3, b3 = r.nodes[chord.back()].p3;
-    for (std::size_t k = 1; k + 1 < chord.size(); ++k)
-      r.nodes[chord[k]].p3 = a3 + (static_cast<double>(k) / static_cast<double>(rows)) * (b3 - a3);
-    chords.push_back(std::move(chord));
-  }
-  // The cycle with the feet; feet at one point: no remesh.
-  std::vector<std::size_t> ring;
-  std::vector<Side> side_of(r.nodes.size(), Side::Rung);  // of the ring edge from a node
-  for (std::size_t i = 0; i < n; ++i) {
-    ring.push_back(i);
-    side_of[i] = side[i];
-    std::sort(feet[i].begin(), feet[i].end());
-    for (std::size_t k = 0; k < feet[i].size(); ++k) {
-      if (k > 0 && feet[i][k].first - feet[i][k - 1].first <= kBendTieRel)
-        return fail("feet meet");
-      ring.push_back(feet[i][k].second);
-      side_of[feet[i][k].second] = side[i];
-    }
-  }
-  std::vector<bool> kept(r.nodes.size(), true);  // chords' nodes are kept
-  for (std::size_t i = 0; i < n; ++i) kept[i] = keep[i];
-  // Fixed edges (rung chains' and chords'), by their nodes, with the chain they belong to.
-  std::unordered_map<std::uint64_t, std::size_t> fixed_edge;
-  {
-    std::size_t chain = 0;
-    for (std::size_t k = 0; k < ring.size(); ++k) {
-      const std::size_t a = ring[k], b = ring[(k + 1) % ring.size()];
-      if (side_of[a] != Side::Rung) continue;
-      // A new chain where the previous ring edge is not a rung edge of the same run.
-      if (side_of[ring[(k + ring.size() - 1) % ring.size()]] != Side::Rung) ++chain;
-      fixed_edge[edge_key(a, b)] = chain;
-    }
-    // A run of rung edges of more than `rows` edges is two chains end to end: split it.
-    std::unordered_map<std::size_t, std::size_t> count;
-    for (const auto& [key, c] : fixed_edge) ++count[c];
-    for (const auto& [c, edges] : count)
-      if (edges != rows) return fail("rung chains end to end");
-    for (const std::vector<std::size_t>& c : chords) {
-      ++chain;
-      for (std::size_t k = 0; k + 1 < c.size(); ++k) fixed_edge[edge_key(c[k], c[k + 1])] = chain;
-    }
+    return nullptr;
   }
 
-  // The pieces: the ring split along every chord.
-  struct Todo {
-    std::vector<std::size_t> poly;
-    std::vector<std::size_t> chords;  // indices into `chords`
+  /// A piece's side: a rung chain or a chord (fixed edges of one chain), a straight free wall
+  /// between kept nodes (its inner nodes go and its edges are counted again), or one other
+  /// edge (a seam's, an arc's: fixed).
+  struct Link {
+    std::vector<std::size_t> nodes;  // from its first node to its last, in the piece
+    bool wall = false;               // spaced again
+    std::size_t chain = kNoIndex;
+    double len = 0.0;
+    std::uint32_t edges = 0;
   };
-  std::vector<std::vector<std::size_t>> pieces;
-  std::vector<Todo> todo{{ring, {}}};
-  for (std::size_t c = 0; c < chords.size(); ++c) todo.back().chords.push_back(c);
-  while (!todo.empty()) {
-    Todo t = std::move(todo.back());
-    todo.pop_back();
-    if (t.chords.empty()) {
-      pieces.push_back(std::move(t.poly));
-      continue;
-    }
-    const std::vector<std::size_t>& c = chords[t.chords.front()];
-    const auto place = [&](std::size_t v) {
-      return static_cast<std::size_t>(std::find(t.poly.begin(), t.poly.end(), v) - t.poly.begin());
-    };
-    const std::size_t ia = place(c.front()), ib = place(c.back());
-    if (ia == t.poly.size() || ib == t.poly.size()) return fail("chord off its piece");
-    Todo t1, t2;
-    for (std::size_t k = ia;; k = (k + 1) % t.poly.size()) {
-      t1.poly.push_back(t.poly[k]);
-      if (k == ib) break;
-    }
-    for (std::size_t k = c.size() - 2; k >= 1; --k) t1.poly.push_back(c[k]);  // back along it
-    for (std::size_t k = ib;; k = (k + 1) % t.poly.size()) {
-      t2.poly.push_back(t.poly[k]);
-      if (k == ia) break;
-    }
-    for (std::size_t k = 1; k + 1 < c.size(); ++k) t2.poly.push_back(c[k]);
-    for (std::size_t k = 1; k < t.chords.size(); ++k) {
-      const std::vector<std::size_t>& d = chords[t.chords[k]];
-      const bool in1 = std::find(t1.poly.begin(), t1.poly.end(), d.front()) != t1.poly.end() &&
-                       std::find(t1.poly.begin(), t1.poly.end(), d.back()) != t1.poly.end();
-      (in1 ? t1 : t2).chords.push_back(t.chords[k]);
-    }
-    todo.push_back(std::move(t1));
-    todo.push_back(std::move(t2));
+
+  std::size_t chain_of(std::size_t a, std::size_t e) const {
+    const auto f = fixed_edge_.find(edge_key(a, e));
+    return f == fixed_edge_.end() ? kNoIndex : f->second;
   }
 
-  for (const std::vector<std::size_t>& piece : pieces) {
+  /// The piece's sides, from a kept node where one begins; none when a wall bends.
+  std::optional<std::vector<Link>> links_of(const std::vector<std::size_t>& piece) const {
     const std::size_t pn = piece.size();
-    // The piece's sides: a rung chain or a chord (fixed edges of one chain), a straight free
-    // wall between kept nodes (its inner nodes go and its edges are counted again), or one
-    // other edge (a seam's, an arc's: fixed).
-    struct Link {
-      std::vector<std::size_t> nodes;  // from its first node to its last, in the piece
-      bool wall = false;               // spaced again
-      std::size_t chain = kNoIndex;
-      double len = 0.0;
-      std::uint32_t edges = 0;
-    };
-    std::size_t start = kNoIndex;  // a place where a side begins: a kept node after a change
+    const auto at = [&](std::size_t k) { return piece[k % pn]; };
+    std::size_t start = kNoIndex;
     for (std::size_t k = 0; k < pn && start == kNoIndex; ++k) {
-      const std::uint64_t kin = edge_key(piece[(k + pn - 1) % pn], piece[k]);
-      const std::uint64_t kout = edge_key(piece[k], piece[(k + 1) % pn]);
-      const auto fin = fixed_edge.find(kin), fout = fixed_edge.find(kout);
-      const std::size_t cin = fin == fixed_edge.end() ? kNoIndex : fin->second;
-      const std::size_t cout = fout == fixed_edge.end() ? kNoIndex : fout->second;
-      if (kept[piece[k]] && (cin != cout || cin == kNoIndex)) start = k;
+      const std::size_t cin = chain_of(at(k + pn - 1), at(k)), cout = chain_of(at(k), at(k + 1));
+      if (kept_[at(k)] && (cin != cout || cin == kNoIndex)) start = k;
     }
-    if (start == kNoIndex) return fail("piece without sides");
+    if (start == kNoIndex) return std::nullopt;
     std::vector<Link> links;
     for (std::size_t k = 0; k < pn;) {
-      const std::size_t a = piece[(start + k) % pn];
-      const auto f = fixed_edge.find(edge_key(a, piece[(start + k + 1) % pn]));
+      const std::size_t a = at(start + k);
       Link l;
       l.nodes.push_back(a);
-      if (f != fixed_edge.end()) {
-        l.chain = f->second;
-        while (k < pn) {
-          const auto g =
-              fixed_edge.find(edge_key(piece[(start + k) % pn], piece[(start + k + 1) % pn]));
-          if (g == fixed_edge.end() || g->second != l.chain) break;
+      l.chain = chain_of(a, at(start + k + 1));
+      if (l.chain != kNoIndex) {
+        while (k < pn && chain_of(at(start + k), at(start + k + 1)) == l.chain) {
           ++k;
-          l.nodes.push_back(piece[(start + k) % pn]);
+          l.nodes.push_back(at(start + k));
         }
       } else {
         do {
           ++k;
-          l.nodes.push_back(piece[(start + k) % pn]);
-        } while (k < pn && !kept[piece[(start + k) % pn]]);
-        const Node& na = r.nodes[l.nodes.front()];
-        const Node& nb = r.nodes[l.nodes.back()];
-        if (side_of[a] == Side::FreeWall && on_straight_edge(patch, na.p3, nb.p3)) {
+          l.nodes.push_back(at(start + k));
+        } while (k < pn && !kept_[at(start + k)]);
+        if (side_of_[a] == Side::FreeWall &&
+            b_.on_straight_edge(patch_, r_.nodes[l.nodes.front()].p3,
+                                r_.nodes[l.nodes.back()].p3)) {
           l.wall = true;
         } else if (l.nodes.size() != 2) {
-          return fail("bent wall");
+          return std::nullopt;
         }
       }
       for (std::size_t j = 0; j + 1 < l.nodes.size(); ++j)
-        l.len += distance(r.nodes[l.nodes[j]].pos, r.nodes[l.nodes[j + 1]].pos);
+        l.len += distance(r_.nodes[l.nodes[j]].pos, r_.nodes[l.nodes[j + 1]].pos);
       l.edges = static_cast<std::uint32_t>(l.nodes.size() - 1);
       links.push_back(std::move(l));
     }
-    // A grid: two chains of `rows` edges across, two straight walls between them.
+    return links;
+  }
+
+  /// The quads of one piece: a grid (two chains of `rows_` edges across, two straight walls
+  /// between them: both walls round(L / h) edges, a Coons patch inside), or the templates
+  /// (walls at the spacing of the piece's chains, at most h; one more edge on the wall of the
+  /// longest edges when the count is odd).
+  const char* mesh_piece(const std::vector<std::size_t>& piece) {
+    const double h = b_.h_;
+    std::optional<std::vector<Link>> found = links_of(piece);
+    if (!found) return "bent wall";
+    std::vector<Link>& links = *found;
     const bool grid = links.size() == 4 && links[0].wall == links[2].wall &&
                       links[1].wall == links[3].wall && links[0].wall != links[1].wall &&
                       links[links[0].wall ? 1 : 0].chain != kNoIndex &&
                       links[links[0].wall ? 3 : 2].chain != kNoIndex;
     if (grid) {
       const std::size_t w = links[0].wall ? 0 : 1;
-      const std::uint32_t m = edges_for(0.5 * (links[w].len + links[w + 2].len), h_);
+      const std::uint32_t m = edges_for(0.5 * (links[w].len + links[w + 2].len), h);
       links[w].edges = links[w + 2].edges = m;
     } else {
-      // Walls at the spacing across the chains and chords of the piece (the square of a bend
-      // is rows x rows), or h.
       double chain_len = 0.0;
       std::size_t count = 0;
       for (const Link& l : links)
@@ -726,95 +773,105 @@ std::optional<Remesh> BendCells::remesh_cell(const std::vector<std::uint32_t>& q
           chain_len += l.len;
           count += l.edges;
         }
-      const double spacing = count > 0 ? std::min(h_, chain_len / static_cast<double>(count)) : h_;
+      const double spacing = count > 0 ? std::min(h, chain_len / static_cast<double>(count)) : h;
       double span = 0.0;
       for (const Link& a : links)
-        for (const Link& b : links)
-          span = std::max(span, distance(r.nodes[a.nodes.front()].pos, r.nodes[b.nodes.front()].pos));
-      if (span > kBendPieceSpan * h_) return fail("wide piece");
+        for (const Link& e : links)
+          span = std::max(span,
+                          distance(r_.nodes[a.nodes.front()].pos, r_.nodes[e.nodes.front()].pos));
+      if (span > kBendPieceSpan * h) return "wide piece";
       std::uint32_t edges = 0;
       for (Link& l : links) {
         if (l.wall) l.edges = edges_for(l.len, spacing);
         edges += l.edges;
       }
-      if (edges % 2 != 0) {  // one more edge on the wall whose edges are longest
+      if (edges % 2 != 0) {
         Link* longest = nullptr;
         for (Link& l : links)
           if (l.wall && (longest == nullptr ||
                          l.len / l.edges > longest->len / longest->edges * (1.0 + kBendTieRel)))
             longest = &l;
-        if (longest == nullptr) return fail("odd piece");
+        if (longest == nullptr) return "odd piece";
         ++longest->edges;
       }
     }
-    // The piece's new cycle: each side's nodes, the walls' spaced evenly.
+    // The piece's new sides: each link's nodes, the walls' spaced evenly.
     std::vector<std::vector<std::size_t>> sides;
     for (const Link& l : links) {
       std::vector<std::size_t> s;
       if (!l.wall) {
         s = l.nodes;
       } else {
-        const Node a = r.nodes[l.nodes.front()], b = r.nodes[l.nodes.back()];
+        const Node a = r_.nodes[l.nodes.front()], e = r_.nodes[l.nodes.back()];
         s.push_back(l.nodes.front());
         for (std::uint32_t k = 1; k < l.edges; ++k) {
           const double t = static_cast<double>(k) / l.edges;
-          s.push_back(r.nodes.size());
-          r.nodes.push_back(Node{Node::kNew, a.pos + t * (b.pos - a.pos), a.p3 + t * (b.p3 - a.p3)});
+          s.push_back(r_.nodes.size());
+          r_.nodes.push_back(
+              Node{Node::kNew, a.pos + t * (e.pos - a.pos), a.p3 + t * (e.p3 - a.p3)});
         }
         s.push_back(l.nodes.back());
       }
       sides.push_back(std::move(s));
     }
-    if (grid) {
-      // A Coons grid: G(i, 0) along the first wall, G(m, j) up the chain after it, G(i, k) along
-      // the other wall backwards, G(0, j) down the chain before it.
-      const std::size_t w = links[0].wall ? 0 : 1;
-      const std::vector<std::size_t>& bottom = sides[w];
-      const std::vector<std::size_t>& right = sides[(w + 1) % 4];
-      const std::vector<std::size_t>& top = sides[(w + 2) % 4];
-      const std::vector<std::size_t>& left = sides[(w + 3) % 4];
-      const std::size_t m = bottom.size() - 1, k = right.size() - 1;
-      if (top.size() != m + 1 || left.size() != k + 1) return fail("grid sides differ");
-      std::vector<std::size_t> g((m + 1) * (k + 1));
-      const auto at = [&](std::size_t i, std::size_t j) -> std::size_t& { return g[j * (m + 1) + i]; };
-      for (std::size_t i = 0; i <= m; ++i) {
-        at(i, 0) = bottom[i];
-        at(i, k) = top[m - i];
-      }
-      for (std::size_t j = 0; j <= k; ++j) {
-        at(m, j) = right[j];
-        at(0, j) = left[k - j];
-      }
-      for (std::size_t j = 1; j < k; ++j)
-        for (std::size_t i = 1; i < m; ++i) {
-          const double s = static_cast<double>(i) / static_cast<double>(m),
-                       t = static_cast<double>(j) / static_cast<double>(k);
-          const auto coons = [&](auto get) {
-            return (1 - t) * get(at(i, 0)) + t * get(at(i, k)) + (1 - s) * get(at(0, j)) +
-                   s * get(at(m, j)) -
-                   ((1 - s) * (1 - t) * get(at(0, 0)) + s * (1 - t) * get(at(m, 0)) +
-                    (1 - s) * t * get(at(0, k)) + s * t * get(at(m, k)));
-          };
-          const Vec2 p = coons([&](std::size_t v) { return r.nodes[v].pos; });
-          const Vec3 p3 = coons([&](std::size_t v) { return r.nodes[v].p3; });
-          at(i, j) = r.nodes.size();
-          r.nodes.push_back(Node{Node::kNew, p, p3, true});
-        }
-      for (std::size_t j = 0; j < k; ++j)
-        for (std::size_t i = 0; i < m; ++i)
-          r.quads.push_back(Quad{static_cast<std::uint32_t>(at(i, j)),
-                                 static_cast<std::uint32_t>(at(i + 1, j)),
-                                 static_cast<std::uint32_t>(at(i + 1, j + 1)),
-                                 static_cast<std::uint32_t>(at(i, j + 1))});
-      continue;
+    if (grid) return coons_grid(sides, links[0].wall ? 0 : 1);
+    return templates(sides);
+  }
+
+  /// A Coons grid on four sides, `w` the first wall: G(i, 0) along it, G(m, j) up the chain
+  /// after it, G(i, k) along the other wall backwards, G(0, j) down the chain before it.
+  const char* coons_grid(const std::vector<std::vector<std::size_t>>& sides, std::size_t w) {
+    const std::vector<std::size_t>& bottom = sides[w];
+    const std::vector<std::size_t>& right = sides[(w + 1) % 4];
+    const std::vector<std::size_t>& top = sides[(w + 2) % 4];
+    const std::vector<std::size_t>& left = sides[(w + 3) % 4];
+    const std::size_t m = bottom.size() - 1, k = right.size() - 1;
+    if (top.size() != m + 1 || left.size() != k + 1) return "grid sides differ";
+    std::vector<std::size_t> g((m + 1) * (k + 1));
+    const auto at = [&](std::size_t i, std::size_t j) -> std::size_t& {
+      return g[j * (m + 1) + i];
+    };
+    for (std::size_t i = 0; i <= m; ++i) {
+      at(i, 0) = bottom[i];
+      at(i, k) = top[m - i];
     }
+    for (std::size_t j = 0; j <= k; ++j) {
+      at(m, j) = right[j];
+      at(0, j) = left[k - j];
+    }
+    for (std::size_t j = 1; j < k; ++j)
+      for (std::size_t i = 1; i < m; ++i) {
+        const double s = static_cast<double>(i) / static_cast<double>(m),
+                     t = static_cast<double>(j) / static_cast<double>(k);
+        const auto coons = [&](auto get) {
+          return (1 - t) * get(at(i, 0)) + t * get(at(i, k)) + (1 - s) * get(at(0, j)) +
+                 s * get(at(m, j)) -
+                 ((1 - s) * (1 - t) * get(at(0, 0)) + s * (1 - t) * get(at(m, 0)) +
+                  (1 - s) * t * get(at(0, k)) + s * t * get(at(m, k)));
+        };
+        const Vec2 p = coons([&](std::size_t v) { return r_.nodes[v].pos; });
+        const Vec3 p3 = coons([&](std::size_t v) { return r_.nodes[v].p3; });
+        at(i, j) = r_.nodes.size();
+        r_.nodes.push_back(Node{Node::kNew, p, p3, true});
+      }
+    for (std::size_t j = 0; j < k; ++j)
+      for (std::size_t i = 0; i < m; ++i)
+        r_.quads.push_back(Quad{static_cast<std::uint32_t>(at(i, j)),
+                                static_cast<std::uint32_t>(at(i + 1, j)),
+                                static_cast<std::uint32_t>(at(i + 1, j + 1)),
+                                static_cast<std::uint32_t>(at(i, j + 1))});
+    return nullptr;
+  }
+
+  /// Any other piece: the re-fill's templates (fill_cavity), in the piece's own frame.
+  const char* templates(const std::vector<std::vector<std::size_t>>& sides) {
     std::vector<std::size_t> cycle;
-    for (const std::vector<std::size_t>& s : sides) cycle.insert(cycle.end(), s.begin(), s.end() - 1);
-    if (cycle.size() % 2 != 0) return fail("odd cycle");
-    if (cycle.size() > kBendPieceNodes) return fail("piece of many nodes");
-    // Any other piece: the face templates, in the piece's own frame.
+    for (const std::vector<std::size_t>& s : sides)
+      cycle.insert(cycle.end(), s.begin(), s.end() - 1);
+    if (cycle.size() % 2 != 0) return "odd cycle";
+    if (cycle.size() > kBendPieceNodes) return "piece of many nodes";
     std::vector<Vec2> poly;
-    for (std::size_t v : cycle) poly.push_back(r.nodes[v].pos);
+    for (std::size_t v : cycle) poly.push_back(r_.nodes[v].pos);
     const LocalFrame cf(poly);
     FaceInput face;
     for (const Vec2 p : poly) face.cycle.push_back(cf.to_local(p));
@@ -824,97 +881,108 @@ std::optional<Remesh> BendCells::remesh_cell(const std::vector<std::uint32_t>& q
     all.edges = static_cast<std::uint32_t>(poly.size());
     face.sides.push_back(all);
     const std::optional<FaceMesh> fm = fill_cavity(face);
-    if (!fm) {
-      if (debug) {
-        std::fprintf(stderr, "bends: no fill of");
-        for (const Vec2 q : poly) std::fprintf(stderr, " (%.4f %.4f)", q.x, q.y);
-        std::fprintf(stderr, "\n");
-      }
-      return fail("no fill");
-    }
+    if (!fm) return "no fill";
     std::vector<std::size_t> id = cycle;
     for (const Vec2 q : fm->interior) {
-      id.push_back(r.nodes.size());
+      id.push_back(r_.nodes.size());
       const Vec2 p = cf.to_patch(q);
-      r.nodes.push_back(Node{Node::kNew, p, frame.to_3d(p), true});
+      r_.nodes.push_back(Node{Node::kNew, p, frame_.to_3d(p), true});
     }
     for (const auto& x : fm->quads)
-      r.quads.push_back(Quad{static_cast<std::uint32_t>(id[x[0]]), static_cast<std::uint32_t>(id[x[1]]),
-                             static_cast<std::uint32_t>(id[x[2]]), static_cast<std::uint32_t>(id[x[3]])});
+      r_.quads.push_back(
+          Quad{static_cast<std::uint32_t>(id[x[0]]), static_cast<std::uint32_t>(id[x[1]]),
+               static_cast<std::uint32_t>(id[x[2]]), static_cast<std::uint32_t>(id[x[3]])});
+    return nullptr;
   }
-  // The old quads and the new, each relaxed inside the cell's cycle (in the cycle's own frame:
-  // the same problem in every pose), then judged: kept when fewer quads are beyond Table III's
-  // thresholds and the worst corner is no lower.
-  const LocalFrame cf(pos);
-  const auto relax_and_judge = [&](std::vector<Vec2>& at, const std::vector<bool>& fixed,
-                                   const std::vector<Quad>& qs, int& beyond, double& worst) {
-    if (sweeps_ > 0) final_sweeps(at, fixed, qs, sweeps_, kFinalEscapeTarget);
-    beyond = 0;
-    worst = std::numeric_limits<double>::infinity();
-    for (const Quad& x : qs) {
-      beyond += beyond_table_iii(measure_planar_quad(at[x[0]], at[x[1]], at[x[2]], at[x[3]])) ? 1 : 0;
-      worst = std::min(worst, min_scaled_jacobian(at[x[0]], at[x[1]], at[x[2]], at[x[3]]));
-    }
-  };
-  int was_beyond = 0, now_beyond = 0;
-  double was = 0.0, now = 0.0;
-  {
-    // The old: the cycle's nodes fixed, the cell's inner nodes free.
-    std::vector<std::uint32_t> ids(cyc.begin(), cyc.end());
-    std::unordered_map<std::uint32_t, std::uint32_t> local;
-    for (std::uint32_t i = 0; i < n; ++i) local[cyc[i]] = i;
-    std::vector<Quad> qs;
-    for (std::uint32_t q : quads) {
-      Quad x = mesh_.elements[q].nodes;
-      for (std::uint32_t& v : x) {
-        const auto it = local.emplace(v, static_cast<std::uint32_t>(ids.size()));
-        if (it.second) ids.push_back(v);
-        v = it.first->second;
+
+  /// The old quads and the new, each relaxed inside the cell's cycle (in the cycle's own
+  /// frame: the same problem in every pose): kept when fewer quads are beyond Table III's
+  /// thresholds and the worst corner is no lower. The new free nodes take their relaxed places.
+  bool judge() {
+    const LocalFrame cf(pos_);
+    const auto relax_and_judge = [&](std::vector<Vec2>& at, const std::vector<bool>& fixed,
+                                     const std::vector<Quad>& qs, int& beyond, double& worst) {
+      if (b_.sweeps_ > 0) final_sweeps(at, fixed, qs, b_.sweeps_, kFinalEscapeTarget);
+      beyond = 0;
+      worst = std::numeric_limits<double>::infinity();
+      for (const Quad& x : qs) {
+        beyond +=
+            beyond_table_iii(measure_planar_quad(at[x[0]], at[x[1]], at[x[2]], at[x[3]])) ? 1 : 0;
+        worst = std::min(worst, min_scaled_jacobian(at[x[0]], at[x[1]], at[x[2]], at[x[3]]));
       }
-      qs.push_back(x);
+    };
+    {
+      // The old: the cycle's nodes fixed, the cell's inner nodes free.
+      std::vector<std::uint32_t> ids(cyc_.begin(), cyc_.end());
+      std::unordered_map<std::uint32_t, std::uint32_t> local;
+      for (std::uint32_t i = 0; i < n_; ++i) local[cyc_[i]] = i;
+      std::vector<Quad> qs;
+      for (std::uint32_t q : quads_) {
+        Quad x = b_.mesh_.elements[q].nodes;
+        for (std::uint32_t& v : x) {
+          const auto it = local.emplace(v, static_cast<std::uint32_t>(ids.size()));
+          if (it.second) ids.push_back(v);
+          v = it.first->second;
+        }
+        qs.push_back(x);
+      }
+      std::vector<Vec2> at;
+      for (std::uint32_t v : ids) at.push_back(cf.to_local(frame_.to_2d(b_.mesh_.nodes[v])));
+      std::vector<bool> fixed(ids.size(), false);
+      std::fill(fixed.begin(), fixed.begin() + static_cast<std::ptrdiff_t>(n_), true);
+      relax_and_judge(at, fixed, qs, was_beyond_, was_);
     }
-    std::vector<Vec2> at;
-    for (std::uint32_t v : ids) at.push_back(cf.to_local(frame.to_2d(mesh_.nodes[v])));
-    std::vector<bool> fixed(ids.size(), false);
-    std::fill(fixed.begin(), fixed.begin() + static_cast<std::ptrdiff_t>(n), true);
-    relax_and_judge(at, fixed, qs, was_beyond, was);
-  }
-  {
     std::vector<Vec2> at;
     std::vector<bool> fixed;
-    for (const Node& v : r.nodes) {
+    for (const Node& v : r_.nodes) {
       at.push_back(cf.to_local(v.pos));
       fixed.push_back(!v.free);
     }
-    relax_and_judge(at, fixed, r.quads, now_beyond, now);
-    for (std::size_t k = 0; k < r.nodes.size(); ++k)
-      if (r.nodes[k].free) {
-        r.nodes[k].pos = cf.to_patch(at[k]);
-        r.nodes[k].p3 = frame.to_3d(r.nodes[k].pos);
+    relax_and_judge(at, fixed, r_.quads, now_beyond_, now_);
+    for (std::size_t k = 0; k < r_.nodes.size(); ++k)
+      if (r_.nodes[k].free) {
+        r_.nodes[k].pos = cf.to_patch(at[k]);
+        r_.nodes[k].p3 = frame_.to_3d(r_.nodes[k].pos);
       }
+    return now_beyond_ < was_beyond_ && settled(now_) >= settled(was_);
   }
-  const bool keep_it = now_beyond < was_beyond && settled(now) >= settled(was);
-  if (debug)
-    std::fprintf(stderr,
-                 "bends: cell of %zu quads at node %u (%zu round, %zu cuts, %zu pieces, %zu rows): "
-                 "%zu quads, beyond %d -> %d, worst %.3f -> %.3f%s\n",
-                 quads.size(), mesh_.elements[quads.front()].nodes[0], n, chords.size(),
-                 pieces.size(), rows, r.quads.size(), was_beyond, now_beyond, was, now,
-                 keep_it ? " kept" : "");
-  if (!keep_it) return std::nullopt;
-  // Only the nodes the quads use.
-  std::vector<std::size_t> renum(r.nodes.size(), kNoIndex);
-  Remesh used;
-  for (Quad& x : r.quads)
-    for (std::uint32_t& v : x) {
-      if (renum[v] == kNoIndex) {
-        renum[v] = used.nodes.size();
-        used.nodes.push_back(r.nodes[v]);
-      }
-      v = static_cast<std::uint32_t>(renum[v]);
-    }
-  used.quads = std::move(r.quads);
-  return used;
+
+  struct Cut {
+    std::size_t from;
+    std::size_t edge;                ///< cycle edge it lands on (edge i: node i to i + 1)
+    double s;                        ///< along that edge
+    std::size_t to_node = kNoIndex;  ///< a kept node it lands on instead
+    Vec2 at;
+  };
+
+  const BendCells& b_;
+  const std::vector<std::uint32_t>& quads_;
+  const std::size_t patch_;
+  const Frame& frame_;
+  // The boundary (boundary()).
+  std::vector<std::uint32_t> cyc_;
+  std::size_t n_ = 0;
+  std::vector<Side> side_;
+  std::vector<Vec2> pos_;
+  std::size_t rows_ = 0;  ///< the rung chains' edge count (all alike)
+  std::vector<bool> keep_;
+  // The cuts, chords, ring and pieces.
+  std::vector<Cut> cuts_;
+  Remesh r_;
+  std::vector<std::vector<std::size_t>> chords_;
+  std::vector<std::size_t> ring_;
+  std::vector<Side> side_of_;  ///< of the ring edge from each node
+  std::vector<bool> kept_;
+  std::unordered_map<std::uint64_t, std::size_t> fixed_edge_;
+  std::vector<std::vector<std::size_t>> pieces_;
+  // The judgement.
+  int was_beyond_ = 0, now_beyond_ = 0;
+  double was_ = 0.0, now_ = 0.0;
+};
+
+std::optional<Remesh> BendCells::remesh_cell(const std::vector<std::uint32_t>& quads,
+                                             std::vector<std::uint32_t>* across) const {
+  return Cell(*this, quads).remesh(across);
 }
 
 }  // namespace
