@@ -13,7 +13,7 @@
 // A cut that meets a rung chain, or lands beside its end, first joins the cell across it. The
 // cell's rung chains and B-Rep vertices stay; the nodes on its straight walls are spaced
 // again. Kept when, both relaxed, fewer quads are beyond Table III's thresholds and the worst
-// corner is no lower.
+// corner is no lower, or as many are and the worst corner is higher by kBendWorstGain.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -64,6 +64,10 @@ constexpr double kBendPieceSpan = 3.0;
 /// ... and has at most this many nodes (a bend's square with a relief in it has 10; a needle's
 /// walls at the spacing of its tip's chords would have thousands).
 constexpr std::size_t kBendPieceNodes = 24;
+/// A remesh with as many quads beyond Table III's thresholds is kept when its worst corner is
+/// higher by this (a plus-shaped crossing of two strips: its centre split on a diagonal, 0.707,
+/// against a grid, 0.99).
+constexpr double kBendWorstGain = 0.1;
 /// Lengths over a spacing within this of a half, and lengths within this ratio of a bound,
 /// count as on it, alike in every pose (a grid-cell outline meets them exactly).
 constexpr double kBendTieRel = 1e-9;
@@ -897,7 +901,8 @@ class BendCells::Cell {
 
   /// The old quads and the new, each relaxed inside the cell's cycle (in the cycle's own
   /// frame: the same problem in every pose): kept when fewer quads are beyond Table III's
-  /// thresholds and the worst corner is no lower. The new free nodes take their relaxed places.
+  /// thresholds and the worst corner is no lower, or as many and the worst corner higher by
+  /// kBendWorstGain. The new free nodes take their relaxed places.
   bool judge() {
     const LocalFrame cf(pos_);
     const auto relax_and_judge = [&](std::vector<Vec2>& at, const std::vector<bool>& fixed,
@@ -944,7 +949,8 @@ class BendCells::Cell {
         r_.nodes[k].pos = cf.to_patch(at[k]);
         r_.nodes[k].p3 = frame_.to_3d(r_.nodes[k].pos);
       }
-    return now_beyond_ < was_beyond_ && settled(now_) >= settled(was_);
+    return (now_beyond_ < was_beyond_ && settled(now_) >= settled(was_)) ||
+           (now_beyond_ == was_beyond_ && settled(now_) >= settled(was_) + kBendWorstGain);
   }
 
   struct Cut {

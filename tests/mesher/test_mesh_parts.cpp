@@ -738,6 +738,14 @@ TEST_CASE("a thin strip's bends are squares cut straight across from the reflex 
     return r.stats.thin_bends > 0 && r.quality.measures[2].bad_percent == 0.0 &&
            r.mesh.elements.size() == 48;
   });
+  // Where strips meet, the same cuts from the reflex corners. A T of strips 1 wide at h = 1.25:
+  // 26 quads, 2 tapered, worst 0.707 (the junction split on diagonals) -> 30, none, 0.992. A
+  // plus: 32 quads, none tapered but the centre split on its diagonals (0.707), kept for its
+  // worst corner alone (kBendWorstGain): 36 quads, 0.993.
+  check_test_parts({{"strip_tee.json", 0.95}, {"strip_cross.json", 0.95}},
+                   [](const MeshPartResult& r) {
+                     return r.stats.thin_bends > 0 && r.quality.measures[2].bad_percent == 0.0;
+                   });
   // cgal_Detmier: a strip 0.125 wide at h = 0.158 with nine jogs and a corner relief at each
   // outer corner: 20.0% of its quads at taper <= 0.8 (Table III allows 10.4%), 2.9% at skew
   // >= 30. With its bends squared: 8.3% (the reliefs' two quads each), no skew.

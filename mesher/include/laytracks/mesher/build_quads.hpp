@@ -182,7 +182,8 @@ std::size_t fold_corner_reliefs(const Part& part, QuadMesh& mesh);
 /// boundary to boundary, and a cell with a reflex B-Rep vertex is meshed again as pieces
 /// between cuts from that vertex straight across the strip (at most 1.5 h long): rows of
 /// quads between two cuts, the face templates elsewhere. Kept when fewer quads are beyond
-/// Table III's thresholds and the worst corner is no lower, the old quads and the new each
+/// Table III's thresholds and the worst corner is no lower (or as many, and the worst corner
+/// higher by 0.1), the old quads and the new each
 /// relaxed inside the cell by `sweeps` of the final smoothing's sweeps. Returns the cells
 /// meshed again.
 std::size_t square_thin_bends(const Part& part, QuadMesh& mesh, double size, int sweeps);
