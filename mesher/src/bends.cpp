@@ -577,7 +577,8 @@ class BendCells::Cell {
   }
 
   /// The remesh's nodes (the cycle's, then each cut's inner nodes and foot), the chords (the
-  /// nodes of each cut, `rows_` edges; of two that cross the later goes), the ring (the cycle
+  /// nodes of each cut, `rows_` edges; of two that cross the later goes, as does one that
+  /// crosses the cycle), the ring (the cycle
   /// with the feet), and the fixed edges (rung chains' and chords', by chain).
   const char* lay_chords() {
     for (std::size_t i = 0; i < n_; ++i)
@@ -592,6 +593,17 @@ class BendCells::Cell {
         if ((a == cut.from && e == to) || (e == cut.from && a == to)) clash = true;
         if (a == cut.from || e == cut.from || (to != kNoIndex && (a == to || e == to))) continue;
         if (segments_meet(r_.nodes[a].pos, r_.nodes[e].pos, pos_[cut.from], to_pos)) clash = true;
+      }
+      // A cut taken by a kept node leans off its ray: it must still cross no edge of the cycle
+      // (but those at its ends, and the one its foot lands on).
+      for (std::size_t j = 0; j < n_ && !clash; ++j) {
+        if (j == cut.from || next(j) == cut.from) continue;
+        // An edge through the cut's foot (its own, or one beside it when the foot is at a
+        // node) only touches it there.
+        const Vec2 a = pos_[j], e = pos_[next(j)] - pos_[j];
+        const double u = std::clamp(dot(to_pos - a, e) / dot(e, e), 0.0, 1.0);
+        if (distance(to_pos, a + u * e) <= kBendTieRel * distance(pos_[cut.from], to_pos)) continue;
+        clash = segments_meet(a, pos_[next(j)], pos_[cut.from], to_pos);
       }
       if (clash) continue;
       std::vector<std::size_t> chord{cut.from};
