@@ -9,7 +9,8 @@
 // straight across the strip, from boundary to boundary through inner nodes of four quads (in
 // a strip of k rows, the lines of edges across it). A cell with a reflex B-Rep vertex between
 // its walls is meshed again as pieces between cuts from that vertex: a k x m grid where a
-// piece has two cuts (or rung chains) and two straight walls, the face templates elsewhere.
+// piece has two cuts (or rung chains) and two straight walls, the face templates elsewhere (a
+// bend's block, two cuts and two walls to the convex corner, both ways, the better kept).
 // A cut that meets a rung chain, or lands beside its end, first joins the cell across it. The
 // cell's rung chains and B-Rep vertices stay; the nodes on its straight walls are spaced
 // again. Kept when, both relaxed, fewer quads are beyond Table III's thresholds and the worst
@@ -118,6 +119,8 @@ struct Node {
 struct Remesh {
   std::vector<Node> nodes;
   std::vector<Quad> quads;  ///< over `nodes`
+  int beyond = 0;           ///< quads beyond Table III's thresholds, relaxed
+  double worst = 0.0;       ///< their worst corner, relaxed
 };
 
 class BendCells {
@@ -362,9 +365,12 @@ class BendCells {
 /// returns why (for LAYTRACKS_DEBUG_BENDS); nullptr is on.
 class BendCells::Cell {
  public:
-  Cell(const BendCells& b, const std::vector<std::uint32_t>& quads)
+  /// With `blocks`, a bend's block (two chains from its reflex corner, two walls to its convex
+  /// one) is a rows x rows grid; without, it goes to the templates like any other piece.
+  Cell(const BendCells& b, const std::vector<std::uint32_t>& quads, bool blocks)
       : b_(b),
         quads_(quads),
+        blocks_(blocks),
         patch_(b.mesh_.elements[quads.front()].patch.index()),
         frame_(b.part_.patches[patch_].frame) {}
 
@@ -405,6 +411,8 @@ class BendCells::Cell {
         v = static_cast<std::uint32_t>(renum[v]);
       }
     used.quads = std::move(r_.quads);
+    used.beyond = now_beyond_;
+    used.worst = now_;
     return used;
   }
 
@@ -777,10 +785,23 @@ class BendCells::Cell {
                       links[1].wall == links[3].wall && links[0].wall != links[1].wall &&
                       links[links[0].wall ? 1 : 0].chain != kNoIndex &&
                       links[links[0].wall ? 3 : 2].chain != kNoIndex;
+    // A bend's block: two chains of `rows_` edges from the reflex corner, two straight walls
+    // meeting at the convex corner (chain, chain, wall, wall in some turn of the cycle): a
+    // rows x rows grid, whatever the walls' lengths (a sharp bend's kite).
+    std::size_t block = kNoIndex;  // the link after which the two walls come
+    if (blocks_ && links.size() == 4)
+      for (std::size_t j = 0; j < 4 && !grid; ++j)
+        if (links[j].chain != kNoIndex && links[(j + 1) % 4].chain != kNoIndex &&
+            links[(j + 2) % 4].wall && links[(j + 3) % 4].wall && links[j].edges == rows_ &&
+            links[(j + 1) % 4].edges == rows_)
+          block = (j + 1) % 4;
     if (grid) {
       const std::size_t w = links[0].wall ? 0 : 1;
       const std::uint32_t m = edges_for(0.5 * (links[w].len + links[w + 2].len), h);
       links[w].edges = links[w + 2].edges = m;
+    } else if (block != kNoIndex) {
+      links[(block + 1) % 4].edges = links[(block + 2) % 4].edges =
+          static_cast<std::uint32_t>(rows_);
     } else {
       double chain_len = 0.0;
       std::size_t count = 0;
@@ -831,6 +852,7 @@ class BendCells::Cell {
       sides.push_back(std::move(s));
     }
     if (grid) return coons_grid(sides, links[0].wall ? 0 : 1);
+    if (block != kNoIndex) return coons_grid(sides, block);
     return templates(sides);
   }
 
@@ -975,6 +997,7 @@ class BendCells::Cell {
 
   const BendCells& b_;
   const std::vector<std::uint32_t>& quads_;
+  const bool blocks_;
   const std::size_t patch_;
   const Frame& frame_;
   // The boundary (boundary()).
@@ -1000,7 +1023,18 @@ class BendCells::Cell {
 
 std::optional<Remesh> BendCells::remesh_cell(const std::vector<std::uint32_t>& quads,
                                              std::vector<std::uint32_t>* across) const {
-  return Cell(*this, quads).remesh(across);
+  // A bend's block as a grid and as the templates fill it: the better kept (fewer quads beyond
+  // Table III's thresholds, then the higher worst corner; the templates' on a tie). A sharp
+  // bend's kite is better as a grid, a bend with a chamfer or a long leg beside it sometimes
+  // not.
+  if (across != nullptr) return Cell(*this, quads, false).remesh(across);
+  std::optional<Remesh> plain = Cell(*this, quads, false).remesh(nullptr);
+  std::optional<Remesh> blocks = Cell(*this, quads, true).remesh(nullptr);
+  if (!blocks) return plain;
+  if (!plain || blocks->beyond < plain->beyond ||
+      (blocks->beyond == plain->beyond && settled(blocks->worst) > settled(plain->worst)))
+    return blocks;
+  return plain;
 }
 
 }  // namespace

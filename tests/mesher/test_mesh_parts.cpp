@@ -746,6 +746,14 @@ TEST_CASE("a thin strip's bends are squares cut straight across from the reflex 
                    [](const MeshPartResult& r) {
                      return r.stats.thin_bends > 0 && r.quality.measures[2].bad_percent == 0.0;
                    });
+  // Sharp bends (turns of 120 degrees, outer corners of 60): a strip 1 wide at h = 1.25, 33
+  // quads, 21.2% at taper <= 0.8, 6.1% at skew >= 30, worst 0.500. Each bend's block (two
+  // cuts from the reflex corner, two walls to the convex one) is a 2 x 2 grid of kites: 42
+  // quads, 2.4%, no skew, worst 0.866.
+  check_test_parts({{"strip_sharp_bends.json", 0.85}}, [](const MeshPartResult& r) {
+    return r.stats.thin_bends > 0 && r.quality.measures[2].bad_percent < 5.0 &&
+           r.quality.measures[0].bad_percent == 0.0;
+  });
   // cgal_Detmier: a strip 0.125 wide at h = 0.158 with nine jogs and a corner relief at each
   // outer corner: 20.0% of its quads at taper <= 0.8 (Table III allows 10.4%), 2.9% at skew
   // >= 30. With its bends squared: 8.3% (the reliefs' two quads each), no skew.
