@@ -48,10 +48,10 @@ constexpr double kBendCutMax = 2.5;
 constexpr std::size_t kBendCellQuads = 256;
 /// Rounds of joining the cells across the rung chains that cuts meet.
 constexpr int kBendJoins = 3;
-/// A reflex corner is cut when its walls turn by at least this (degrees): below it the two
+/// A reflex corner is cut when its walls turn by more than this (degrees): below it the two
 /// cuts land a sliver apart.
 constexpr double kBendTurnMin = 30.0;
-/// A cut lands on a wall within this (degrees) of parallel to the wall it leaves...
+/// A cut lands on a wall less than this (degrees) from parallel to the wall it leaves...
 constexpr double kBendParallel = 30.0;
 /// ... which is at least this x the cut long (a corner relief's step is not cut across).
 constexpr double kBendWallMin = 0.5;
@@ -505,7 +505,9 @@ class BendCells::Cell {
         continue;
       const Vec2 din = pos_[i] - pos_[prev(i)], dout = pos_[next(i)] - pos_[i];
       const double turn = std::atan2(cross(din, dout), dot(din, dout)) * 180.0 / kPi;
-      if (!(turn <= -kBendTurnMin)) continue;  // reflex by at least kBendTurnMin
+      // Reflex by more than kBendTurnMin (a turn of exactly that, a regular 12-gon's, is none:
+      // its rounding is either side of it by pose).
+      if (!(turn < -kBendTurnMin * (1.0 + kBendTieRel))) continue;
       for (const Vec2 d : {din, dout}) {
         const Vec2 normal = Vec2{-d.y, d.x} * (1.0 / norm(d));  // inward: the cell on the left
         // The first edge the ray meets. Alike in every pose: edges within kBendTieRel of
@@ -539,7 +541,8 @@ class BendCells::Cell {
           continue;
         }
         const Vec2 e = pos_[next(hit)] - pos_[hit];
-        if (std::abs(cross(d, e)) > std::sin(kBendParallel * kPi / 180.0) * norm(d) * norm(e) ||
+        if (std::abs(cross(d, e)) >=
+                std::sin(kBendParallel * kPi / 180.0) * (1.0 - kBendTieRel) * norm(d) * norm(e) ||
             dot(d, e) >= 0.0)
           continue;
         const std::size_t along = d == din ? prev(i) : next(i);
@@ -816,7 +819,7 @@ class BendCells::Cell {
         for (const Link& e : links)
           span = std::max(span,
                           distance(r_.nodes[a.nodes.front()].pos, r_.nodes[e.nodes.front()].pos));
-      if (span > kBendPieceSpan * h) return "wide piece";
+      if (span > kBendPieceSpan * h * (1.0 + kBendTieRel)) return "wide piece";
       std::uint32_t edges = 0;
       for (Link& l : links) {
         if (l.wall) l.edges = edges_for(l.len, spacing);
